@@ -1,5 +1,6 @@
 #include "test_support.h"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -44,6 +45,71 @@ bool file_exists(const std::string& path) { return std::filesystem::exists(path)
 std::string shared_scene(const std::string& relative) {
   const std::filesystem::path path = std::filesystem::path(LUEUR_SHARED_SCENES) / relative;
   return std::filesystem::exists(path) ? path.string() : std::string();
+}
+
+}  // namespace lueur::test
+
+namespace lueur::test {
+namespace {
+
+void add_quad(Scene& s, Vec3 a, Vec3 b, Vec3 c, Vec3 d, uint32_t material) {
+  const auto base = static_cast<uint32_t>(s.positions.size());
+  s.positions.insert(s.positions.end(), {a, b, c, d});
+  Triangle t1, t2;
+  t1.v[0] = base, t1.v[1] = base + 1, t1.v[2] = base + 2, t1.material = material;
+  t2.v[0] = base, t2.v[1] = base + 2, t2.v[2] = base + 3, t2.material = material;
+  s.triangles.push_back(t1);
+  s.triangles.push_back(t2);
+}
+
+}  // namespace
+
+Scene make_closed_emitting_box(float h, Vec3 rho, Vec3 le) {
+  Scene s;
+  s.name = "closed-box";
+  Material m;
+  m.name = "wall";
+  m.kd = rho;
+  m.ke = le;
+  s.materials.push_back(m);
+  // Each face counter-clockwise as seen from inside the box, so every geometric normal points inwards.
+  add_quad(s, {-h, -h, -h}, {-h, -h, h}, {h, -h, h}, {h, -h, -h}, 0);  // floor, normal +y
+  add_quad(s, {-h, h, -h}, {h, h, -h}, {h, h, h}, {-h, h, h}, 0);      // ceiling, normal -y
+  add_quad(s, {-h, -h, -h}, {-h, h, -h}, {-h, h, h}, {-h, -h, h}, 0);  // x = -h, normal +x
+  add_quad(s, {h, -h, -h}, {h, -h, h}, {h, h, h}, {h, h, -h}, 0);      // x = +h, normal -x
+  add_quad(s, {-h, -h, -h}, {h, -h, -h}, {h, h, -h}, {-h, h, -h}, 0);  // z = -h, normal +z
+  add_quad(s, {-h, -h, h}, {-h, h, h}, {h, h, h}, {h, -h, h}, 0);      // z = +h, normal -z
+  collect_emitters(s);
+  return s;
+}
+
+Scene make_rect_light_over_floor(float w, float h, float height, Vec3 rho, Vec3 le) {
+  Scene s;
+  s.name = "rect-light";
+  Material floor;
+  floor.name = "floor";
+  floor.kd = rho;
+  Material light;
+  light.name = "light";
+  light.kd = Vec3(0.0f);
+  light.ke = le;
+  s.materials = {floor, light};
+  const float f = 100.0f;
+  add_quad(s, {-f, 0, -f}, {-f, 0, f}, {f, 0, f}, {f, 0, -f}, 0);  // normal +y
+  const float x = 0.5f * w, z = 0.5f * h;
+  add_quad(s, {-x, height, -z}, {x, height, -z}, {x, height, z}, {-x, height, z}, 1);  // normal -y
+  collect_emitters(s);
+  return s;
+}
+
+bool chi_square_rejects(double statistic, int dof) {
+  const double k = dof;
+  const double z = (std::cbrt(statistic / k) - (1.0 - 2.0 / (9.0 * k))) / std::sqrt(2.0 / (9.0 * k));
+  return z > 4.0;
+}
+
+std::string strategy_test_name(const ::testing::TestParamInfo<LightStrategy>& info) {
+  return std::string(kLightStrategyNames[static_cast<size_t>(info.param)]);
 }
 
 }  // namespace lueur::test

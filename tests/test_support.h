@@ -5,7 +5,7 @@
 
 namespace lueur::test {
 
-/// A fresh empty directory under the system temp dir, removed at exit of the test process.
+/// A fresh empty directory under the system temp dir (emptied first if a previous run left it).
 std::string make_temp_dir(const std::string& tag);
 
 struct CommandResult {
@@ -21,5 +21,28 @@ bool file_exists(const std::string& path);
 
 /// Path of ../shared/scenes/<relative>; empty when the shared scenes are not beside this checkout.
 std::string shared_scene(const std::string& relative);
+
+}  // namespace lueur::test
+
+#include "render/settings.h"
+#include "scene/scene.h"
+
+#include <gtest/gtest.h>
+
+namespace lueur::test {
+
+/// An axis-aligned box [-half, half]^3 whose 12 inward-facing triangles all emit `le` and reflect `rho`
+/// (no Ks, so K = 1 makes them Lambertian). L1 = rho Le and L2 = rho^2 Le everywhere inside.
+Scene make_closed_emitting_box(float half, Vec3 rho, Vec3 le);
+
+/// A w x h rectangle light (two triangles, facing -y) at height `height` above a large diffuse floor at y = 0.
+Scene make_rect_light_over_floor(float w, float h, float height, Vec3 rho, Vec3 le);
+
+/// Wilson-Hilferty: true when the chi-square statistic is implausibly large for `dof` degrees of freedom
+/// (beyond about 4 standard deviations, p < 1e-4).
+bool chi_square_rejects(double statistic, int dof);
+
+/// Names parameterised tests after the light strategy they run ("all", "uniform", ...).
+std::string strategy_test_name(const ::testing::TestParamInfo<LightStrategy>& info);
 
 }  // namespace lueur::test

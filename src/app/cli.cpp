@@ -1,0 +1,191 @@
+// Command-line parsing with CLI11. Every malformed value becomes a UsageError that names the option.
+#include "app/options.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <sstream>
+#include <vector>
+
+namespace lueur {
+namespace {
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(text);
+  while (std::getline(in, part, separator)) parts.push_back(part);
+  return parts;
+}
+
+/// Reads exactly `count` finite floats separated by spaces or commas.
+std::vector<float> parse_floats(const std::string& option, const std::string& text, size_t count) {
+  std::string cleaned = text;
+  for (char& c : cleaned)
+    if (c == ',') c = ' ';
+  std::istringstream in(cleaned);
+  std::vector<float> values;
+  std::string token;
+  while (in >> token) {
+    size_t used = 0;
+    float v = 0.0f;
+    try {
+      v = std::stof(token, &used);
+    } catch (const std::logic_error&) {
+      used = 0;
+    }
+    if (used != token.size() || !std::isfinite(v))
+      throw UsageError(option + ": '" + token + "' is not a finite number");
+    values.push_back(v);
+  }
+  if (values.size() != count)
+    throw UsageError(option + ": expected " + std::to_string(count) + " numbers, got " + std::to_string(values.size()));
+  return values;
+}
+
+template <typename Enum, size_t N>
+Enum parse_enum(const std::string& option, const std::array<std::string_view, N>& names, const std::string& text) {
+  if (const auto value = enum_from_name<Enum>(names, text)) return *value;
+  std::string allowed;
+  for (const auto name : names) {
+    if (!allowed.empty()) allowed += '|';
+    allowed += name;
+  }
+  throw UsageError(option + ": '" + text + "' is not one of " + allowed);
+}
+
+void parse_size(const std::string& text, RenderSettings& render) {
+  const size_t x = text.find_first_of("xX");
+  int w = 0, h = 0;
+  try {
+    size_t used_w = 0, used_h = 0;
+    if (x == std::string::npos) throw std::invalid_argument("no x");
+    w = std::stoi(text.substr(0, x), &used_w);
+    h = std::stoi(text.substr(x + 1), &used_h);
+    if (used_w != x || used_h != text.size() - x - 1) throw std::invalid_argument("trailing");
+  } catch (const std::logic_error&) {
+    throw UsageError("--size: '" + text + "' is not WIDTHxHEIGHT");
+  }
+  if (w < 1 || h < 1 || w > 16384 || h > 16384)
+    throw UsageError("--size: " + text + " is outside 1x1 .. 16384x16384");
+  render.width = w;
+  render.height = h;
+}
+
+void parse_passes(const std::string& text, RenderSettings& render) {
+  render.enabled.fill(false);
+  for (const std::string& name : split(text, ',')) {
+    const Pass pass = parse_enum<Pass>("--passes", kPassNames, name);
+    render.enabled[static_cast<size_t>(pass)] = true;
+  }
+}
+
+void parse_weights(const std::string& text, std::array<float, kPassCount>& weights) {
+  for (const std::string& item : split(text, ',')) {
+    const size_t eq = item.find('=');
+    if (eq == std::string::npos) throw UsageError("--weights: '" + item + "' is not PASS=WEIGHT");
+    const Pass pass = parse_enum<Pass>("--weights", kPassNames, item.substr(0, eq));
+    weights[static_cast<size_t>(pass)] = parse_floats("--weights", item.substr(eq + 1), 1)[0];
+  }
+}
+
+}  // namespace
+
+std::optional<AppOptions> parse_command_line(int argc, char** argv) {
+  AppOptions o;
+  CLI::App app{"Lueur: a progressive CPU ray tracer of direct (L1) and one-bounce indirect (L2) light", "lueur"};
+  app.set_version_flag("--version", "lueur 0.1.0");
+  std::string size, camera, up, passes, weights, lights, smooth = "on", tonemap;
+  app.add_option("scene", o.scene_path, "OBJ scene (default: the embedded Cornell box with an apple)");
+  app.add_flag("--headless", o.headless, "render to a file instead of opening a window");
+  app.add_option("--out", o.out_path, "output image: .png (tone-mapped sRGB), .pfm (linear), .exr (linear, per pass)");
+  app.add_option("--frames", o.frames, "frames to accumulate (default 64)")->check(CLI::Range(1, 1000000));
+  app.add_option("--size", size, "image size WIDTHxHEIGHT (default 512x512)");
+  app.add_option("--camera", camera, "\"ex ey ez tx ty tz fovy_degrees\"");
+  app.add_option("--up", up, "\"x y z\" camera up vector (default 0 1 0)");
+  app.add_option("--passes", passes, "comma-separated passes: le,l1");
+  app.add_option("--weights", weights, "pass weights, e.g. le=1,l1=0.6");
+  app.add_option("--lights", lights, "light sampling: all|uniform|area|power (default area)");
+  app.add_option("--l1-rays", o.render.l1_rays, "shadow rays per pixel per frame (default 16)")->check(CLI::Range(0, 4096));
+  app.add_option("--blinn-k", o.render.blinn_k, "Lambert share K of the Blinn-Phong mix (default 0.7)")
+      ->check(CLI::Range(0.0f, 1.0f));
+  app.add_option("--smooth-normals", smooth, "on|off: compute smooth normals for files without them (default on)");
+  app.add_option("--seed", o.render.seed, "random seed (default 0)");
+  app.add_option("--threads", o.threads, "worker threads (default: all cores)")->check(CLI::Range(0, 1024));
+  app.add_option("--exposure", o.display.exposure, "exposure in stops (default 0)")->check(CLI::Range(-30.0f, 30.0f));
+  app.add_option("--tonemap", tonemap, "none|reinhard|aces (default none)");
+  app.add_option("--export-default-scene", o.export_default_scene,
+                 "write the embedded default scene as OBJ + MTL to FILE.obj and exit");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::printf("%s", app.help().c_str());
+    return std::nullopt;
+  } catch (const CLI::CallForVersion&) {
+    std::printf("lueur 0.1.0\n");
+    return std::nullopt;
+  } catch (const CLI::ParseError& e) {
+    std::string message = e.what();
+    if (const size_t nl = message.find('\n'); nl != std::string::npos) message.resize(nl);
+    throw UsageError(message);
+  }
+
+  if (!size.empty()) parse_size(size, o.render);
+  if (!passes.empty()) parse_passes(passes, o.render);
+  if (!weights.empty()) parse_weights(weights, o.weights);
+  if (!lights.empty()) o.render.lights = parse_enum<LightStrategy>("--lights", kLightStrategyNames, lights);
+  if (!tonemap.empty()) o.display.tonemap = parse_enum<ToneMap>("--tonemap", kToneMapNames, tonemap);
+  if (smooth == "on")
+    o.smooth_normals = true;
+  else if (smooth == "off")
+    o.smooth_normals = false;
+  else
+    throw UsageError("--smooth-normals: '" + smooth + "' is not on|off");
+  if (!camera.empty()) {
+    const std::vector<float> v = parse_floats("--camera", camera, 7);
+    CameraSpec spec;
+    spec.eye = Vec3(v[0], v[1], v[2]);
+    spec.target = Vec3(v[3], v[4], v[5]);
+    spec.fovy_degrees = v[6];
+    if (!(v[6] > 0.0f && v[6] < 180.0f)) throw UsageError("--camera: field of view must be in (0, 180) degrees");
+    if (spec.eye == spec.target) throw UsageError("--camera: eye and target are the same point");
+    o.camera = spec;
+  }
+  if (!up.empty()) {
+    const std::vector<float> v = parse_floats("--up", up, 3);
+    if (v[0] == 0.0f && v[1] == 0.0f && v[2] == 0.0f) throw UsageError("--up: the zero vector has no direction");
+    o.up = Vec3(v[0], v[1], v[2]);
+  }
+  if (o.headless && o.out_path.empty() && o.export_default_scene.empty()) throw UsageError("--headless needs --out FILE");
+  return o;
+}
+
+std::string describe_options(const AppOptions& o) {
+  std::ostringstream s;
+  s << "lueur ";
+  if (!o.scene_path.empty()) s << "'" << o.scene_path << "' ";
+  s << "--size " << o.render.width << "x"
+    << o.render.height << " --frames " << o.frames << " --passes ";
+  bool first = true;
+  for (int p = 0; p < kPassCount; ++p)
+    if (o.render.enabled[static_cast<size_t>(p)]) {
+      s << (first ? "" : ",") << kPassNames[static_cast<size_t>(p)];
+      first = false;
+    }
+  s << " --weights ";
+  for (int p = 0; p < kPassCount; ++p)
+    s << (p ? "," : "") << kPassNames[static_cast<size_t>(p)] << "=" << o.weights[static_cast<size_t>(p)];
+  s << " --lights " << enum_name(kLightStrategyNames, o.render.lights) << " --l1-rays " << o.render.l1_rays
+    << " --blinn-k " << o.render.blinn_k << " --smooth-normals " << (o.smooth_normals ? "on" : "off") << " --seed "
+    << o.render.seed << " --exposure " << o.display.exposure << " --tonemap "
+    << enum_name(kToneMapNames, o.display.tonemap);
+  if (o.camera)
+    s << " --camera \"" << o.camera->eye.x << " " << o.camera->eye.y << " " << o.camera->eye.z << " "
+      << o.camera->target.x << " " << o.camera->target.y << " " << o.camera->target.z << " "
+      << o.camera->fovy_degrees << "\"";
+  if (o.up) s << " --up \"" << o.up->x << " " << o.up->y << " " << o.up->z << "\"";
+  return s.str();
+}
+
+}  // namespace lueur

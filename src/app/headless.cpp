@@ -1,0 +1,88 @@
+// Headless rendering: progress on stderr while it runs, a summary at the end, the image written atomically.
+#include "app/headless.h"
+
+#include "app/scene_source.h"
+#include "core/atomic_file.h"
+#include "render/image_output.h"
+#include "render/renderer.h"
+#include "scene/obj_loader.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <unistd.h>
+
+namespace lueur {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// Refuses an output that could never be written before spending minutes rendering it.
+void check_output_path(const std::string& path) {
+  if (!is_supported_image_path(path))
+    throw IoError("cannot write '" + path + "': unknown image format (use .png, .pfm or .exr)");
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw IoError("cannot write '" + path + "': it is a directory");
+  fs::path dir = fs::path(path).parent_path();
+  if (dir.empty()) dir = ".";
+  if (!fs::is_directory(dir, ec)) throw IoError("cannot write '" + path + "': no directory '" + dir.string() + "'");
+  if (::access(dir.c_str(), W_OK) != 0) throw IoError("cannot write '" + path + "': directory is not writable");
+}
+
+}  // namespace
+
+int run_headless(const AppOptions& options) {
+  check_output_path(options.out_path);
+  const RenderSettings& settings = options.render;
+  const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
+  const OpenedScene opened = open_scene(options.scene_path, options.smooth_normals, aspect);
+  for (const std::string& w : opened.warnings) std::fprintf(stderr, "lueur: warning: %s\n", w.c_str());
+
+  CameraSpec view = options.camera.value_or(opened.default_view);
+  if (options.up) view.up = *options.up;
+  const Camera camera = make_camera(view, settings.width, settings.height);
+
+  Film film;
+  film.reset(settings.width, settings.height, settings.enabled);
+  ThreadPool pool(options.threads);
+  const TracedScene& traced = *opened.traced;
+  std::fprintf(stderr, "lueur: %s, %zu triangles, %zu emitters, %dx%d, %d frames, %d threads\n",
+               traced.scene.name.c_str(), traced.scene.triangles.size(), traced.lights.size(), settings.width,
+               settings.height, options.frames, pool.thread_count());
+
+  const Clock::time_point start = Clock::now();
+  Clock::time_point last_progress = start;
+  uint64_t rays = 0;
+  const bool tty = ::isatty(STDERR_FILENO);
+  for (int f = 0; f < options.frames; ++f) {
+    rays += render_frame(traced, camera, settings, film, pool).rays;
+    const double elapsed = seconds_since(start);
+    if (f + 1 == options.frames || std::chrono::duration<double>(Clock::now() - last_progress).count() > 0.5) {
+      last_progress = Clock::now();
+      const double left = elapsed / (f + 1) * (options.frames - f - 1);
+      std::fprintf(stderr, "%slueur: frame %d/%d, %.1f s elapsed, about %.1f s left%s", tty ? "\r" : "", f + 1,
+                   options.frames, elapsed, left, tty ? "   " : "\n");
+    }
+  }
+  const double elapsed = seconds_since(start);
+  if (tty) std::fprintf(stderr, "\n");
+
+  std::vector<NamedImage> layers;
+  for (int p = 0; p < kPassCount; ++p)
+    if (settings.enabled[static_cast<size_t>(p)])
+      layers.push_back({std::string(kPassNames[static_cast<size_t>(p)]), pass_average(film, static_cast<Pass>(p))});
+  const Image combined = combine_passes(film, settings.enabled, options.weights);
+  write_image(options.out_path, combined, layers, options.display, describe_options(options));
+
+  std::fprintf(stderr, "lueur: %d frames in %.2f s, %.1f M rays traced (%.2f Mrays/s)\n", options.frames, elapsed,
+               static_cast<double>(rays) * 1e-6, elapsed > 0.0 ? static_cast<double>(rays) * 1e-6 / elapsed : 0.0);
+  std::printf("%s\n", options.out_path.c_str());
+  return 0;
+}
+
+}  // namespace lueur

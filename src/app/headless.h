@@ -1,0 +1,11 @@
+// The headless mode: render N frames of a scene and write one image file.
+#pragma once
+
+#include "app/options.h"
+
+namespace lueur {
+
+/// Renders and writes `options.out_path`. Returns the process exit status (0, or 2 after printing an error).
+int run_headless(const AppOptions& options);
+
+}  // namespace lueur

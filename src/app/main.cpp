@@ -1,0 +1,43 @@
+// lueur: the entry point. Parses the command line and runs the headless renderer; every error becomes one line on
+// stderr and exit status 2.
+#include "app/headless.h"
+#include "app/options.h"
+#include "core/atomic_file.h"
+#include "scene/default_scene.h"
+#include "scene/obj_loader.h"
+#include "scene/obj_writer.h"
+
+#include <cstdio>
+#include <exception>
+#include <new>
+
+int main(int argc, char** argv) {
+  using namespace lueur;
+  try {
+    const std::optional<AppOptions> options = parse_command_line(argc, argv);
+    if (!options) return 0;
+    if (!options->export_default_scene.empty()) {
+      write_obj(make_default_scene(), options->export_default_scene);
+      std::printf("%s\n", options->export_default_scene.c_str());
+      return 0;
+    }
+    if (!options->headless) {
+      std::fprintf(stderr,
+                   "lueur: error: this build has no interactive window yet; render to a file with --headless --out "
+                   "FILE\n");
+      return 2;
+    }
+    return run_headless(*options);
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "lueur: error: %s (see lueur --help)\n", e.what());
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "lueur: error: %s\n", e.what());
+  } catch (const IoError& e) {
+    std::fprintf(stderr, "lueur: error: %s\n", e.what());
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "lueur: error: out of memory\n");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "lueur: error: %s\n", e.what());
+  }
+  return 2;
+}

@@ -1,0 +1,28 @@
+#include "app/scene_source.h"
+
+#include "scene/default_scene.h"
+#include "scene/obj_loader.h"
+
+namespace lueur {
+
+OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect) {
+  OpenedScene opened;
+  Scene scene;
+  if (path.empty()) {
+    scene = make_default_scene();
+    if (smooth_normals) compute_smooth_normals(scene);
+    const DefaultView view;
+    opened.default_view = CameraSpec{view.eye, view.target, view.up, view.fovy_degrees};
+  } else {
+    LoadOptions load_options;
+    load_options.smooth_normals = smooth_normals;
+    LoadedScene loaded = load_obj(path, load_options);
+    scene = std::move(loaded.scene);
+    opened.warnings = std::move(loaded.warnings);
+    opened.default_view = frame_box(scene.bounds(), 45.0f, aspect);
+  }
+  opened.traced = prepare_scene(std::move(scene));
+  return opened;
+}
+
+}  // namespace lueur

@@ -1,0 +1,23 @@
+// Opens what the user asked for: an OBJ file or the embedded default scene, with its default view.
+#pragma once
+
+#include "app/options.h"
+#include "render/traced_scene.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lueur {
+
+struct OpenedScene {
+  std::shared_ptr<const TracedScene> traced;
+  CameraSpec default_view;
+  std::vector<std::string> warnings;
+};
+
+/// Loads (or builds) the scene, applies the normal-smoothing option and prepares it for tracing.
+/// Throws SceneError for a scene that cannot be used.
+OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect);
+
+}  // namespace lueur

@@ -1,0 +1,30 @@
+// The report's Blinn-Phong BRDF. Depends on the scene layer (Material).
+#pragma once
+
+#include "scene/scene.h"
+
+namespace lueur {
+
+/// Normalised Blinn-Phong lobe (n + 8) / (8 pi) cos^n(theta_h).
+inline float blinn_phong_lobe(float cos_theta_h, float exponent) {
+  if (cos_theta_h <= 0.0f) return 0.0f;
+  return (exponent + 8.0f) * (1.0f / (8.0f * kPi)) * std::pow(cos_theta_h, exponent);
+}
+
+/// BRDF for light arriving along `wi` and leaving along `wo` (both unit, pointing away from the surface) at a point
+/// with shading normal `n`. With Ks: Kd / pi + Ks lobe. Without Ks: the report's mix Kd (K / pi + (1 - K) lobe).
+inline Vec3 eval_brdf(const Material& m, const Vec3& n, const Vec3& wi, const Vec3& wo, float blinn_k) {
+  const Vec3 h = wi + wo;
+  const float h_length = glm::length(h);
+  const float cos_theta_h = h_length > 0.0f ? glm::dot(n, h) / h_length : 0.0f;
+  const float lobe = blinn_phong_lobe(cos_theta_h, m.ns);
+  if (m.has_specular()) return m.kd * kInvPi + m.ks * lobe;
+  return m.kd * (blinn_k * kInvPi + (1.0f - blinn_k) * lobe);
+}
+
+/// The view-independent part of the BRDF (what a Lambertian surface would reflect).
+inline Vec3 eval_brdf_diffuse(const Material& m, float blinn_k) {
+  return m.has_specular() ? m.kd * kInvPi : m.kd * (blinn_k * kInvPi);
+}
+
+}  // namespace lueur

@@ -1,0 +1,39 @@
+// Pinhole camera: eye, target, up and vertical field of view, turned into primary rays with sub-pixel jitter.
+// Depends on core only.
+#pragma once
+
+#include "core/ray.h"
+
+namespace lueur {
+
+/// How the user specifies a view.
+struct CameraSpec {
+  Vec3 eye{0.0f, 0.0f, 1.0f};
+  Vec3 target{0.0f};
+  Vec3 up{0.0f, 1.0f, 0.0f};
+  float fovy_degrees = 45.0f;
+};
+
+/// A camera looking at the bounding box from its +z side, far enough that the whole box fits the view.
+CameraSpec frame_box(const Box3& box, float fovy_degrees = 45.0f, float aspect = 1.0f);
+
+/// The ready-to-trace form: an orthonormal basis and the image-plane scale.
+struct Camera {
+  Vec3 eye;
+  Vec3 forward, right, up;  ///< right x up = -forward; +x of the image goes along `right`
+  float tan_half_fovy = 1.0f;
+  float aspect = 1.0f;
+  int width = 1, height = 1;
+};
+
+/// Builds the basis; a degenerate spec (eye on target, up parallel to the view) gets a safe fallback up vector.
+Camera make_camera(const CameraSpec& spec, int width, int height);
+
+/// The ray through image position (x, y) in pixels, (0, 0) the top-left corner of the image, y pointing down.
+/// The direction is normalised, so hit distances are world distances.
+Ray camera_ray(const Camera& camera, float x, float y);
+
+/// The inverse: the pixel position of a world point and whether it lies in front of the camera and inside the image.
+bool project_to_pixel(const Camera& camera, const Vec3& point, float& x, float& y);
+
+}  // namespace lueur

@@ -1,0 +1,23 @@
+// L1: direct light at a surface point from shadow rays to points sampled on emissive triangles.
+// Depends on the traced scene and the BRDF.
+#pragma once
+
+#include "core/rng.h"
+#include "render/settings.h"
+#include "render/traced_scene.h"
+
+namespace lueur {
+
+struct DirectLightOptions {
+  LightStrategy strategy = LightStrategy::kArea;
+  int rays = 16;           ///< samples; with kAll each sample sends one shadow ray to every emitter
+  float blinn_k = 0.7f;
+  bool diffuse_only = false;  ///< evaluate only the view-independent part of the BRDF
+};
+
+/// Radiance reflected towards `sp.wo` from the emitters, averaged over `options.rays` samples.
+/// Unbiased for every strategy. Adds the shadow rays it traced to `rays_traced`.
+Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, const DirectLightOptions& options,
+                           Pcg32& rng, uint64_t& rays_traced);
+
+}  // namespace lueur

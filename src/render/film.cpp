@@ -1,0 +1,41 @@
+// Averages and the weighted combination of the per-pass sums.
+#include "render/film.h"
+
+namespace lueur {
+
+void Film::reset(int new_width, int new_height, const std::array<bool, kPassCount>& enabled) {
+  width = new_width;
+  height = new_height;
+  frames = 0;
+  for (int p = 0; p < kPassCount; ++p) {
+    auto& sum = sums[static_cast<size_t>(p)];
+    if (enabled[static_cast<size_t>(p)])
+      sum.assign(3 * pixel_count(), 0.0f);
+    else
+      sum.clear();
+  }
+}
+
+Image pass_average(const Film& film, Pass pass) {
+  Image image{film.width, film.height, std::vector<float>(3 * film.pixel_count(), 0.0f)};
+  const auto& sum = film.sums[static_cast<size_t>(pass)];
+  if (sum.empty() || film.frames == 0) return image;
+  const float scale = 1.0f / static_cast<float>(film.frames);
+  for (size_t i = 0; i < sum.size(); ++i) image.rgb[i] = sum[i] * scale;
+  return image;
+}
+
+Image combine_passes(const Film& film, const std::array<bool, kPassCount>& enabled,
+                     const std::array<float, kPassCount>& weights) {
+  Image image{film.width, film.height, std::vector<float>(3 * film.pixel_count(), 0.0f)};
+  if (film.frames == 0) return image;
+  for (int p = 0; p < kPassCount; ++p) {
+    const auto& sum = film.sums[static_cast<size_t>(p)];
+    if (!enabled[static_cast<size_t>(p)] || sum.empty()) continue;
+    const float scale = weights[static_cast<size_t>(p)] / static_cast<float>(film.frames);
+    for (size_t i = 0; i < sum.size(); ++i) image.rgb[i] += sum[i] * scale;
+  }
+  return image;
+}
+
+}  // namespace lueur

@@ -1,0 +1,28 @@
+// Renders frames into a Film: tiles fanned out over a thread pool, each pixel traced with its own random streams,
+// so the result is the same bytes for any thread count. Depends on the render layer below it.
+#pragma once
+
+#include "render/camera.h"
+#include "render/film.h"
+#include "render/settings.h"
+#include "render/thread_pool.h"
+#include "render/traced_scene.h"
+
+#include <atomic>
+#include <cstdint>
+
+namespace lueur {
+
+inline constexpr int kTileSize = 16;
+
+struct FrameResult {
+  uint64_t rays = 0;      ///< primary + shadow + bounce rays traced in this frame
+  bool completed = true;  ///< false when `cancel` stopped it early (the film is then left untouched)
+};
+
+/// Traces frame number `film.frames` at full resolution and adds it to the film's sums.
+/// `cancel`, when given and set, makes workers drop their remaining tiles.
+FrameResult render_frame(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, Film& film,
+                         ThreadPool& pool, const std::atomic<bool>* cancel = nullptr);
+
+}  // namespace lueur

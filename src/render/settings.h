@@ -1,0 +1,56 @@
+// What the tracer renders: passes, weights, light sampling, ray counts, seed. Plain data with name tables that
+// serve both the command line and the UI. Depends on core only.
+#pragma once
+
+#include "core/math.h"
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace lueur {
+
+/// The report's lighting passes. The image is the sum over enabled passes of weight x average(pass).
+enum class Pass : int { kLe = 0, kL1 = 1, kL2 = 2, kAo = 3 };
+inline constexpr int kPassCount = 4;
+inline constexpr std::array<std::string_view, kPassCount> kPassNames = {"le", "l1", "l2", "ao"};
+
+/// How L1 picks the emitter a shadow ray goes to.
+enum class LightStrategy : int { kAll = 0, kUniform = 1, kArea = 2, kPower = 3 };
+inline constexpr std::array<std::string_view, 4> kLightStrategyNames = {"all", "uniform", "area", "power"};
+
+/// Where L2 takes L1(q) from when a bounce ray hits q (the report's screen-space reuse).
+enum class ReuseMode : int { kOff = 0, kFrame = 1, kAverage = 2 };
+inline constexpr std::array<std::string_view, 3> kReuseModeNames = {"off", "frame", "average"};
+
+/// Finds `name` in a name table; nullopt when it is not there.
+template <typename Enum, size_t N>
+std::optional<Enum> enum_from_name(const std::array<std::string_view, N>& names, std::string_view name) {
+  for (size_t i = 0; i < N; ++i)
+    if (names[i] == name) return static_cast<Enum>(i);
+  return std::nullopt;
+}
+template <typename Enum, size_t N>
+std::string_view enum_name(const std::array<std::string_view, N>& names, Enum value) {
+  return names[static_cast<size_t>(value)];
+}
+
+/// Everything that changes the rendered estimate. Changing any of it restarts the accumulation.
+struct RenderSettings {
+  int width = 512;
+  int height = 512;
+  std::array<bool, kPassCount> enabled = {true, true, false, false};
+  LightStrategy lights = LightStrategy::kArea;
+  int l1_rays = 16;        ///< shadow rays per pixel per frame
+  float blinn_k = 0.7f;    ///< the report's Lambert share for materials without Ks
+  uint64_t seed = 0;
+
+  bool pass_enabled(Pass p) const { return enabled[static_cast<size_t>(p)]; }
+};
+
+/// The report's pass weights: Le 1, L1 0.6, L2 0.4, AO 1.
+inline constexpr std::array<float, kPassCount> kReportWeights = {1.0f, 0.6f, 0.4f, 1.0f};
+
+}  // namespace lueur

@@ -1,0 +1,46 @@
+// A fixed set of worker threads that run parallel loops over task indices taken from an atomic counter.
+// Depends on the standard library only.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace lueur {
+
+class ThreadPool {
+ public:
+  /// `threads` <= 0 means one per hardware thread. The calling thread works too, so threads - 1 are spawned.
+  explicit ThreadPool(int threads = 0);
+  ~ThreadPool();
+  ThreadPool(const ThreadPool&) = delete;
+  ThreadPool& operator=(const ThreadPool&) = delete;
+
+  int thread_count() const { return static_cast<int>(workers_.size()) + 1; }
+
+  /// Calls task(index, worker) for every index in [0, count), spread over all threads; returns when all are done.
+  /// `worker` is in [0, thread_count()) and identifies per-thread scratch storage.
+  void parallel_for(int count, const std::function<void(int index, int worker)>& task);
+
+ private:
+  void worker_loop(int worker);
+  void drain(int worker);
+
+  std::vector<std::thread> workers_;
+  std::mutex mutex_;
+  std::condition_variable wake_, done_;
+  const std::function<void(int, int)>* task_ = nullptr;
+  int count_ = 0;
+  std::atomic<int> next_{0};
+  int busy_ = 0;
+  uint64_t generation_ = 0;
+  bool stopping_ = false;
+};
+
+/// Hardware threads, at least 1.
+int hardware_threads();
+
+}  // namespace lueur

@@ -1,0 +1,35 @@
+// A scene made ready to trace: the scene itself, its BVH and its light table, built once and then read-only.
+// Depends on the scene, BVH and render settings.
+#pragma once
+
+#include "bvh/bvh.h"
+#include "render/light_sampler.h"
+#include "scene/scene.h"
+
+#include <memory>
+
+namespace lueur {
+
+struct TracedScene {
+  Scene scene;
+  Bvh bvh;
+  LightTable lights;
+  float diagonal = 1.0f;  ///< bounding-box diagonal, the scale for default radii
+};
+
+/// Builds the BVH and the light table (the expensive step of opening a scene).
+std::shared_ptr<const TracedScene> prepare_scene(Scene scene);
+
+/// The surface seen at a hit, with its normals turned towards the side the ray came from (two-sided shading).
+struct SurfacePoint {
+  Vec3 position;
+  Vec3 geometric_normal;  ///< unit, on the side of `wo`
+  Vec3 shading_normal;    ///< unit, on the same side as the geometric normal
+  Vec3 wo;                ///< unit direction back along the incoming ray
+  uint32_t triangle = kNoHit;
+  bool front_face = true;  ///< the ray arrived on the side the triangle's winding faces (the emitting side)
+};
+
+SurfacePoint make_surface_point(const Scene& scene, const Ray& ray, const Hit& hit);
+
+}  // namespace lueur

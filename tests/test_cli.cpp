@@ -1,0 +1,137 @@
+// The lueur executable end to end: bad input of every kind gives one line naming the problem and exit status 2,
+// with no output file left behind; good input writes PNG, PFM and EXR and prints the path.
+#include "render/image_output.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+namespace lueur {
+namespace {
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = test::make_temp_dir("cli"); }
+  std::string write(const std::string& name, const std::string& text) {
+    const std::string path = dir_ + "/" + name;
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+  }
+  /// Runs a headless render expected to fail; checks status 2, a single error line mentioning `needle`, and that
+  /// no output was written.
+  void expect_refused(const std::string& arguments, const std::string& needle) {
+    const std::string out = dir_ + "/out.png";
+    const test::CommandResult r = test::run_lueur(arguments + " --headless --out '" + out + "' --size 8x8 --frames 1");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("lueur: error: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(needle), std::string::npos) << "expected '" << needle << "' in: " << r.output;
+    // One line of error (warnings may precede it).
+    const size_t error_at = r.output.find("lueur: error: ");
+    if (error_at != std::string::npos) {
+      EXPECT_EQ(r.output.find('\n', error_at), r.output.size() - 1) << r.output;
+    }
+    EXPECT_FALSE(test::file_exists(out));
+  }
+  std::string dir_;
+};
+
+/// Single-quotes a path for the shell. Built by appending: GCC 12 warns falsely (-Wrestrict) on "'" + string.
+std::string shell_quote(const std::string& path) {
+  std::string s = "'";
+  s += path;
+  s += "'";
+  return s;
+}
+
+const char* kQuad =
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+
+TEST_F(Cli, RefusesMissingFilesAndDirectories) {
+  expect_refused(shell_quote(dir_ + "/nope.obj"), "nope.obj");
+  expect_refused(shell_quote(dir_), dir_);
+}
+
+TEST_F(Cli, RefusesMalformedScenesNamingFileAndLine) {
+  expect_refused(shell_quote(write("garbage.obj", std::string(kQuad) + "this is not obj\n")), "garbage.obj:6");
+  expect_refused(shell_quote(write("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n")), "range.obj:4");
+  expect_refused(shell_quote(write("negative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -4\n")), "negative.obj:4");
+  expect_refused(shell_quote(write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n")), "nan.obj:2");
+  expect_refused(shell_quote(write("inf.obj", "v 0 0 0\nv 1 inf 0\nv 0 1 0\nf 1 2 3\n")), "inf.obj:2");
+  expect_refused(shell_quote(write("empty.obj", "")), "empty.obj");
+  expect_refused(shell_quote(write("points.obj", "v 0 0 0\nv 1 0 0\n")), "points.obj");
+  expect_refused(shell_quote(write("binary.obj", std::string("v 0 0 0\n\x01\x02\x00\xff\xfe", 13))), "binary.obj");
+}
+
+TEST_F(Cli, RefusesBadOptions) {
+  expect_refused("--lights sideways", "--lights");
+  expect_refused("--size 0x5", "--size");
+  expect_refused("--size big", "--size");
+  expect_refused("--frames 0", "--frames");
+  expect_refused("--l1-rays -3", "--l1-rays");
+  expect_refused("--blinn-k 1.5", "--blinn-k");
+  expect_refused("--smooth-normals maybe", "--smooth-normals");
+  expect_refused("--passes le,l9", "--passes");
+  expect_refused("--weights l1=heavy", "--weights");
+  expect_refused("--camera '1 2 3'", "--camera");
+  expect_refused("--up '0 0 0'", "--up");
+  expect_refused("--bogus", "bogus");
+  const test::CommandResult r = test::run_lueur("--headless");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("--out"), std::string::npos);
+}
+
+TEST_F(Cli, RefusesUnwritableOutputsBeforeRendering) {
+  for (const std::string& out : {dir_ + "/no/such/dir/x.png", dir_ + "/x.bmp", dir_}) {
+    const test::CommandResult r = test::run_lueur("--headless --size 8x8 --frames 1 --out '" + out + "'");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("cannot write"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("frame 1/1"), std::string::npos) << "should refuse before rendering: " << r.output;
+  }
+}
+
+TEST_F(Cli, WritesPngPfmAndExrAndPrintsThePath) {
+  const std::string scene = write("tri.obj", std::string("mtllib tri.mtl\n") + kQuad);
+  write("tri.mtl", "newmtl m\nKd 0.5 0.5 0.5\n");
+  for (const char* ext : {".png", ".pfm", ".exr"}) {
+    const std::string out = dir_ + "/image" + ext;
+    const test::CommandResult r =
+        test::run_lueur("'" + scene + "' --headless --size 16x12 --frames 2 --threads 2 --out '" + out + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find(out), std::string::npos);
+    EXPECT_NE(r.output.find("Mrays/s"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("default area light"), std::string::npos) << r.output;  // the file has no emitter
+    ASSERT_TRUE(test::file_exists(out));
+  }
+  const Image pfm = decode_pfm(test::read_file(dir_ + "/image.pfm"));
+  EXPECT_EQ(pfm.width, 16);
+  EXPECT_EQ(pfm.height, 12);
+  float brightest = 0.0f;
+  for (const float v : pfm.rgb) {
+    ASSERT_TRUE(std::isfinite(v));
+    brightest = std::max(brightest, v);
+  }
+  EXPECT_GT(brightest, 0.0f);  // the default light reaches the quad
+}
+
+TEST_F(Cli, DefaultSceneRendersWithEveryStrategy) {
+  for (const char* lights : {"all", "uniform", "area", "power"}) {
+    const std::string out = dir_ + "/default-" + lights + ".png";
+    const test::CommandResult r = test::run_lueur(std::string("--headless --size 24x24 --frames 1 --l1-rays 2 --lights ") +
+                                                  lights + " --out '" + out + "'");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_TRUE(test::file_exists(out));
+  }
+}
+
+TEST_F(Cli, ExportedDefaultSceneMatchesTheCommittedAsset) {
+  const std::string out = dir_ + "/cornell-apple.obj";
+  const test::CommandResult r = test::run_lueur("--export-default-scene '" + out + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(test::read_file(out), test::read_file(std::string(LUEUR_SOURCE_DIR) + "/assets/cornell-apple.obj"));
+  EXPECT_EQ(test::read_file(dir_ + "/cornell-apple.mtl"),
+            test::read_file(std::string(LUEUR_SOURCE_DIR) + "/assets/cornell-apple.mtl"));
+}
+
+}  // namespace
+}  // namespace lueur

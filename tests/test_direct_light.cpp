@@ -1,0 +1,156 @@
+// L1 against closed forms: the emitting closed box (L1 = rho Le at every pixel, every strategy) and the irradiance
+// of a rectangular light from Lambert's polygon formula. Tolerances come from the estimator's own standard error.
+#include "render/brdf.h"
+#include "render/direct_light.h"
+#include "render/renderer.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+namespace lueur {
+namespace {
+
+struct Estimate {
+  Vec3 mean{0.0f};
+  Vec3 standard_error{0.0f};
+};
+
+/// Mean and standard error of `n` independent one-sample L1 estimates at a surface point.
+Estimate estimate_with_error(const TracedScene& traced, const SurfacePoint& sp, DirectLightOptions options, int n,
+                             uint64_t seed) {
+  options.rays = 1;
+  Pcg32 rng(seed, 17);
+  uint64_t rays = 0;
+  glm::dvec3 sum(0.0), sum2(0.0);
+  for (int i = 0; i < n; ++i) {
+    const glm::dvec3 x(estimate_direct_light(traced, sp, options, rng, rays));
+    sum += x;
+    sum2 += x * x;
+  }
+  const glm::dvec3 mean = sum / static_cast<double>(n);
+  const glm::dvec3 variance = glm::max(sum2 / static_cast<double>(n) - mean * mean, glm::dvec3(0.0));
+  return {Vec3(mean), Vec3(glm::sqrt(variance / static_cast<double>(n - 1)))};
+}
+
+/// Five standard errors plus a float-rounding floor: a real bias of that size fails.
+void expect_within_error(const Estimate& e, const Vec3& expected, const std::string& where) {
+  for (int c = 0; c < 3; ++c) {
+    const float tolerance = 5.0f * e.standard_error[c] + 1e-4f * std::fabs(expected[c]);
+    EXPECT_NEAR(e.mean[c], expected[c], tolerance) << where << " channel " << c;
+  }
+}
+
+class ClosedBox : public ::testing::TestWithParam<LightStrategy> {};
+
+TEST_P(ClosedBox, DirectLightIsRhoTimesLeAtEveryPixel) {
+  const Vec3 rho(0.5f, 0.7f, 0.3f), le(2.0f, 1.0f, 4.0f);
+  const auto traced = prepare_scene(test::make_closed_emitting_box(1.0f, rho, le));
+  // Every geometric normal points into the box.
+  for (uint32_t t = 0; t < traced->scene.triangles.size(); ++t) {
+    const Vec3 c = (traced->scene.point(t, 1.0f / 3, 1.0f / 3));
+    EXPECT_LT(glm::dot(traced->scene.geometric_normal_raw(t), c), 0.0f);
+  }
+  DirectLightOptions options;
+  options.strategy = GetParam();
+  options.blinn_k = 1.0f;
+  // A 12 x 12 image from a corner-ish viewpoint that sees three walls and two edges.
+  const Camera camera = make_camera({Vec3(0.3f, 0.2f, 0.5f), Vec3(-1.0f, -0.6f, -1.0f), Vec3(0, 1, 0), 100.0f}, 12, 12);
+  const Vec3 expected = rho * le;
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 12; ++x) {
+      const Ray ray = camera_ray(camera, x + 0.5f, y + 0.5f);
+      const Hit hit = intersect_closest(traced->bvh, ray);
+      ASSERT_TRUE(hit.found());
+      const SurfacePoint sp = make_surface_point(traced->scene, ray, hit);
+      ASSERT_TRUE(sp.front_face);
+      const Estimate e = estimate_with_error(*traced, sp, options, 4000, static_cast<uint64_t>(y * 12 + x));
+      expect_within_error(e, expected, "pixel " + std::to_string(x) + "," + std::to_string(y));
+    }
+}
+
+TEST_P(ClosedBox, RenderedFilmAveragesToRhoLe) {
+  const Vec3 rho(0.6f), le(1.5f);
+  const auto traced = prepare_scene(test::make_closed_emitting_box(2.0f, rho, le));
+  RenderSettings settings;
+  settings.width = settings.height = 24;
+  settings.lights = GetParam();
+  settings.blinn_k = 1.0f;
+  settings.l1_rays = 8;
+  Film film;
+  film.reset(settings.width, settings.height, settings.enabled);
+  ThreadPool pool(2);
+  const Camera camera = make_camera({Vec3(0.0f), Vec3(0.0f, 0.0f, -1.0f), Vec3(0, 1, 0), 90.0f}, 24, 24);
+  for (int f = 0; f < 32; ++f) render_frame(*traced, camera, settings, film, pool);
+  const Image l1 = pass_average(film, Pass::kL1);
+  const Image le_pass = pass_average(film, Pass::kLe);
+  double mean = 0.0;
+  for (size_t i = 0; i < l1.rgb.size(); ++i) {
+    mean += l1.rgb[i];
+    EXPECT_FLOAT_EQ(le_pass.rgb[i], 1.5f);  // every pixel sees an emitting wall head-on
+  }
+  mean /= static_cast<double>(l1.rgb.size());
+  // 24 x 24 x 3 channels x 256 samples each: the image mean is known to well under 1%.
+  EXPECT_NEAR(mean, 0.9, 0.009);
+}
+
+INSTANTIATE_TEST_SUITE_P(Lights, ClosedBox,
+                         ::testing::Values(LightStrategy::kAll, LightStrategy::kUniform, LightStrategy::kArea,
+                                           LightStrategy::kPower),
+                         test::strategy_test_name);
+
+/// Irradiance at p (normal n) from a polygon of uniform radiance le (Lambert 1760):
+/// E = le / 2 sum_i beta_i (n . gamma_i), beta_i the angle subtended by edge i, gamma_i the unit normal of the
+/// plane through p and that edge.
+double lambert_polygon_irradiance(const std::vector<glm::dvec3>& polygon, const glm::dvec3& p, const glm::dvec3& n,
+                                  double le) {
+  double sum = 0.0;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const glm::dvec3 a = glm::normalize(polygon[i] - p), b = glm::normalize(polygon[(i + 1) % polygon.size()] - p);
+    const double beta = std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0));
+    sum += beta * glm::dot(n, glm::normalize(glm::cross(a, b)));
+  }
+  return 0.5 * le * std::fabs(sum);
+}
+
+TEST(DirectLight, MatchesLambertPolygonFormulaUnderARectangularLight) {
+  const float w = 1.0f, h = 0.6f, height = 1.0f, rho = 0.8f, le = 5.0f;
+  const auto traced = prepare_scene(test::make_rect_light_over_floor(w, h, height, Vec3(rho), Vec3(le)));
+  const std::vector<glm::dvec3> light = {{-0.5 * w, height, -0.5 * h}, {0.5 * w, height, -0.5 * h},
+                                         {0.5 * w, height, 0.5 * h}, {-0.5 * w, height, 0.5 * h}};
+  for (const LightStrategy strategy : {LightStrategy::kAll, LightStrategy::kArea}) {
+    for (const Vec3 p : {Vec3(0.0f), Vec3(0.3f, 0.0f, 0.1f), Vec3(1.2f, 0.0f, -0.4f), Vec3(-2.0f, 0.0f, 1.5f)}) {
+      // A ray straight down onto the floor at p.
+      Ray ray;
+      ray.origin = p + Vec3(0.0f, 0.5f, 0.0f);
+      ray.dir = Vec3(0.0f, -1.0f, 0.0f);
+      const Hit hit = intersect_closest(traced->bvh, ray);
+      ASSERT_TRUE(hit.found());
+      const SurfacePoint sp = make_surface_point(traced->scene, ray, hit);
+      DirectLightOptions options;
+      options.strategy = strategy;
+      options.blinn_k = 1.0f;
+      const Estimate e = estimate_with_error(*traced, sp, options, 20000, 99);
+      const double irradiance = lambert_polygon_irradiance(light, glm::dvec3(p), glm::dvec3(0, 1, 0), le);
+      expect_within_error(e, Vec3(static_cast<float>(rho / kPi * irradiance)),
+                          "point " + std::to_string(p.x) + "," + std::to_string(p.z));
+      EXPECT_GT(e.mean.r, 0.0f);
+    }
+  }
+}
+
+TEST(DirectLight, BlinnPhongMixWithKOneIsLambertAndLobeIsNormalised) {
+  Material m;
+  m.kd = Vec3(0.5f);
+  m.ns = 20.0f;
+  const Vec3 n(0, 0, 1), wi = glm::normalize(Vec3(0.3f, 0.1f, 1.0f)), wo = glm::normalize(Vec3(-0.2f, 0.4f, 1.0f));
+  EXPECT_FLOAT_EQ(eval_brdf(m, n, wi, wo, 1.0f).r, 0.5f * kInvPi);
+  // K = 0: pure lobe; at the mirror configuration cos(theta_h) = 1 and the lobe is (n + 8) / (8 pi).
+  const Vec3 mirror(-wi.x, -wi.y, wi.z);
+  EXPECT_NEAR(eval_brdf(m, n, wi, mirror, 0.0f).r, 0.5f * 28.0f / (8.0f * kPi), 1e-5f);
+  // With Ks the mix is not used: Kd / pi + Ks lobe.
+  m.ks = Vec3(0.25f);
+  EXPECT_NEAR(eval_brdf(m, n, wi, mirror, 0.7f).r, 0.5f * kInvPi + 0.25f * 28.0f / (8.0f * kPi), 1e-5f);
+}
+
+}  // namespace
+}  // namespace lueur

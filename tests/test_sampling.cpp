@@ -1,0 +1,178 @@
+// Sampling warps and light selection against their probability mass/density functions (chi-square), and the
+// report's Algorithm 1 against the cumulative table.
+#include "core/rng.h"
+#include "core/sampling.h"
+#include "render/light_sampler.h"
+#include "scene/default_scene.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+
+namespace lueur {
+namespace {
+
+TEST(Rng, StreamsArePureFunctionsOfTheirKey) {
+  Pcg32 a = make_pixel_rng(7, 1234, 5, RngPurpose::kDirect);
+  Pcg32 b = make_pixel_rng(7, 1234, 5, RngPurpose::kDirect);
+  Pcg32 other_frame = make_pixel_rng(7, 1234, 6, RngPurpose::kDirect);
+  int same_as_other = 0;
+  for (int i = 0; i < 100; ++i) {
+    const uint32_t x = a.next_u32();
+    EXPECT_EQ(x, b.next_u32());
+    same_as_other += x == other_frame.next_u32();
+  }
+  EXPECT_LT(same_as_other, 3);
+}
+
+TEST(Rng, FloatsAreUniformInUnitInterval) {
+  Pcg32 rng(42, 3);
+  constexpr int kBins = 64, kSamples = 640000;
+  std::vector<int> counts(kBins, 0);
+  for (int i = 0; i < kSamples; ++i) {
+    const float u = rng.next_float();
+    ASSERT_GE(u, 0.0f);
+    ASSERT_LT(u, 1.0f);
+    ++counts[static_cast<size_t>(u * kBins)];
+  }
+  double chi2 = 0.0;
+  const double expected = static_cast<double>(kSamples) / kBins;
+  for (const int c : counts) chi2 += (c - expected) * (c - expected) / expected;
+  EXPECT_FALSE(test::chi_square_rejects(chi2, kBins - 1)) << chi2;
+}
+
+// Uniform points on the triangle (0,0) (1,0) (0,1), binned on an N x N grid: cells below the diagonal have area
+// 1/N^2, cells cut by it 1/(2 N^2); the density is 2 (one over the triangle's area).
+TEST(Sampling, UniformTriangleMatchesItsPdf) {
+  constexpr int kGrid = 16, kSamples = 400000;
+  std::vector<int> counts(kGrid * kGrid, 0);
+  Pcg32 rng(1, 1);
+  for (int i = 0; i < kSamples; ++i) {
+    const Vec2 b = sample_uniform_triangle(rng.next_float(), rng.next_float());
+    ASSERT_GE(b.x, 0.0f);
+    ASSERT_GE(b.y, 0.0f);
+    ASSERT_LE(b.x + b.y, 1.0f + 1e-6f);
+    const int cx = std::min(static_cast<int>(b.x * kGrid), kGrid - 1);
+    const int cy = std::min(static_cast<int>(b.y * kGrid), kGrid - 1);
+    ++counts[static_cast<size_t>(cy * kGrid + cx)];
+  }
+  double chi2 = 0.0;
+  int cells = 0;
+  for (int cy = 0; cy < kGrid; ++cy)
+    for (int cx = 0; cx < kGrid; ++cx) {
+      const int count = counts[static_cast<size_t>(cy * kGrid + cx)];
+      double area = 0.0;
+      if (cx + cy < kGrid - 1) area = 1.0 / (kGrid * kGrid);
+      else if (cx + cy == kGrid - 1) area = 0.5 / (kGrid * kGrid);
+      if (area == 0.0) {
+        EXPECT_EQ(count, 0) << "sample outside the triangle in cell " << cx << "," << cy;
+        continue;
+      }
+      const double expected = kSamples * area * 2.0;
+      chi2 += (count - expected) * (count - expected) / expected;
+      ++cells;
+    }
+  EXPECT_FALSE(test::chi_square_rejects(chi2, cells - 1)) << chi2;
+}
+
+// Cosine-weighted directions binned by (cos theta, phi): the probability of a bin is
+// (cos^2 theta_0 - cos^2 theta_1) / 2 x (phi_1 - phi_0) / (2 pi) when integrating cos(theta)/pi over it.
+TEST(Sampling, CosineHemisphereMatchesItsPdf) {
+  constexpr int kThetaBins = 16, kPhiBins = 16, kSamples = 400000;
+  std::vector<int> counts(kThetaBins * kPhiBins, 0);
+  Pcg32 rng(2, 9);
+  for (int i = 0; i < kSamples; ++i) {
+    const Vec3 d = sample_cosine_hemisphere(rng.next_float(), rng.next_float());
+    ASSERT_NEAR(glm::length(d), 1.0f, 1e-5f);
+    ASSERT_GE(d.z, 0.0f);
+    const float phi = std::atan2(d.y, d.x) + kPi;  // in [0, 2 pi]
+    const int ti = std::min(static_cast<int>(d.z * kThetaBins), kThetaBins - 1);
+    const int pi = std::min(static_cast<int>(phi / (2.0f * kPi) * kPhiBins), kPhiBins - 1);
+    ++counts[static_cast<size_t>(ti * kPhiBins + pi)];
+  }
+  double chi2 = 0.0;
+  for (int ti = 0; ti < kThetaBins; ++ti)
+    for (int pi = 0; pi < kPhiBins; ++pi) {
+      const double c0 = static_cast<double>(ti) / kThetaBins, c1 = static_cast<double>(ti + 1) / kThetaBins;
+      const double p = (c1 * c1 - c0 * c0) / kPhiBins;  // cos-weighted mass of the bin
+      const double expected = kSamples * p;
+      const int count = counts[static_cast<size_t>(ti * kPhiBins + pi)];
+      chi2 += (count - expected) * (count - expected) / expected;
+    }
+  EXPECT_FALSE(test::chi_square_rejects(chi2, kThetaBins * kPhiBins - 1)) << chi2;
+  EXPECT_FLOAT_EQ(cosine_hemisphere_pdf(1.0f), kInvPi);
+  EXPECT_EQ(cosine_hemisphere_pdf(-0.1f), 0.0f);
+}
+
+// A scene whose emitters differ in area and radiance, so that the three strategies have distinct pmfs.
+Scene make_mixed_lights_scene() { return make_default_scene(); }
+
+class StrategyFrequencies : public ::testing::TestWithParam<LightStrategy> {};
+
+TEST_P(StrategyFrequencies, MatchThePmf) {
+  const Scene scene = make_mixed_lights_scene();
+  const LightTable table = build_light_table(scene);
+  ASSERT_GT(table.size(), 100u);
+  const LightStrategy strategy = GetParam();
+
+  double total_pmf = 0.0;
+  for (uint32_t i = 0; i < table.size(); ++i) total_pmf += light_pmf(table, strategy, i);
+  EXPECT_NEAR(total_pmf, 1.0, 1e-5);
+
+  constexpr int kSamples = 2000000;
+  std::vector<int> counts(table.size(), 0);
+  Pcg32 rng(5, static_cast<uint64_t>(strategy));
+  for (int i = 0; i < kSamples; ++i) {
+    const LightChoice c = choose_light(table, strategy, rng.next_float());
+    ASSERT_LT(c.index, table.size());
+    ASSERT_FLOAT_EQ(c.pmf, light_pmf(table, strategy, c.index));
+    ++counts[c.index];
+  }
+  double chi2 = 0.0;
+  for (uint32_t i = 0; i < table.size(); ++i) {
+    const double expected = kSamples * static_cast<double>(light_pmf(table, strategy, i));
+    chi2 += (counts[i] - expected) * (counts[i] - expected) / expected;
+  }
+  EXPECT_FALSE(test::chi_square_rejects(chi2, static_cast<int>(table.size()) - 1)) << chi2;
+}
+
+INSTANTIATE_TEST_SUITE_P(Lights, StrategyFrequencies,
+                         ::testing::Values(LightStrategy::kUniform, LightStrategy::kArea, LightStrategy::kPower),
+                         test::strategy_test_name);
+
+TEST(LightTable, SortedByDecreasingAreaWithConsistentPmfs) {
+  const Scene scene = make_mixed_lights_scene();
+  const LightTable table = build_light_table(scene);
+  ASSERT_EQ(table.size(), scene.emitters.size());
+  for (size_t i = 1; i < table.size(); ++i) EXPECT_GE(table.areas[i - 1], table.areas[i]);
+  // Area pmf is proportional to area; power pmf to area x luminance(Ke).
+  const double total_area = table.cdf_area.back();
+  for (uint32_t i = 0; i < table.size(); ++i) {
+    EXPECT_NEAR(light_pmf(table, LightStrategy::kArea, i), table.areas[i] / total_area, 1e-6);
+    EXPECT_NEAR(light_pmf(table, LightStrategy::kUniform, i), 1.0 / static_cast<double>(table.size()), 1e-9);
+  }
+  // The big ceiling triangles come first and are far more likely by area than uniformly.
+  EXPECT_GT(light_pmf(table, LightStrategy::kArea, 0), 20.0f * light_pmf(table, LightStrategy::kUniform, 0));
+}
+
+TEST(LightTable, AlgorithmOnePicksExactlyWhatTheTablePicks) {
+  const Scene scene = make_mixed_lights_scene();
+  const LightTable table = build_light_table(scene);
+  Pcg32 rng(11, 4);
+  for (int i = 0; i < 200000; ++i) {
+    const float u = rng.next_float();
+    ASSERT_EQ(choose_light_linear_scan(table, u), choose_light(table, LightStrategy::kArea, u).index) << "u=" << u;
+  }
+  // Boundaries: u exactly at each cumulative step, and the extremes.
+  for (uint32_t i = 0; i < table.size(); ++i) {
+    const float u = static_cast<float>(table.cdf_area[i] / table.cdf_area.back());
+    if (u >= 1.0f) continue;
+    ASSERT_EQ(choose_light_linear_scan(table, u), choose_light(table, LightStrategy::kArea, u).index);
+  }
+  EXPECT_EQ(choose_light_linear_scan(table, 0.0f), 0u);
+  EXPECT_EQ(choose_light(table, LightStrategy::kArea, std::nextafter(1.0f, 0.0f)).index, table.size() - 1);
+}
+
+}  // namespace
+}  // namespace lueur
