@@ -1,0 +1,49 @@
+// Loads a Wavefront OBJ (+ MTL) file into a Scene, rejecting malformed input with a file:line message.
+// Depends on core and scene only; tinyobjloader stays inside obj_loader.cpp and never leaks into this header.
+#pragma once
+
+#include "scene/scene.h"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace lueur {
+
+/// A scene that cannot be loaded. The message is one line and names the file, and the line where there is one:
+/// "scene.obj:12: face index 40 out of range (file has 8 vertices so far)".
+struct SceneError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// How the loader fills in what the file leaves out.
+struct LoadOptions {
+  /// Computes smooth shading normals (compute_smooth_normals) when the file has none. Normals written in the
+  /// file are always used, whatever this says: they are the author's intent. With false and no file normals,
+  /// every triangle is shaded flat with its geometric normal.
+  bool smooth_normals = true;
+  /// Faces meeting at a larger angle keep a sharp edge when normals are computed.
+  float crease_degrees = 60.0f;
+};
+
+/// A loaded scene and what the loader repaired or guessed on the way (each a one-line message).
+struct LoadedScene {
+  Scene scene;
+  std::vector<std::string> warnings;
+};
+
+/// Loads `path` and the MTL files its `mtllib` lines name (looked up beside the OBJ file).
+/// The result always has at least one triangle and one emitter (a default light is added when the file has
+/// none) and `scene.emitters` is filled. Throws SceneError for missing, unreadable or malformed files, and
+/// for a scene without emitters so far from the origin (about 1e20) that no default light fits in float.
+/// Missing MTL files, unknown materials and bad material values are warnings: the faces get a grey diffuse
+/// default material (kd 0.5). Zero-area triangles are kept (they are never emitters).
+LoadedScene load_obj(const std::string& path, const LoadOptions& options = {});
+
+/// The same loader on in-memory text (fuzzing and tests). `mtl_text` stands for the file(s) named by the
+/// OBJ's `mtllib` lines, so an OBJ without `mtllib` gets no materials. `name` is used in messages as the
+/// file name; `scene.name` is its stem.
+LoadedScene load_obj_from_text(const std::string& obj_text, const std::string& mtl_text, const std::string& name,
+                               const LoadOptions& options = {});
+
+}  // namespace lueur

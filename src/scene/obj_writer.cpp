@@ -1,0 +1,90 @@
+// OBJ + MTL export: positions, faces grouped into runs of one material, and Kd/Ks/Ns/Ke materials.
+// Depends on core (atomic writes) and scene only; never on tinyobjloader, GL or the render passes.
+#include "scene/obj_writer.h"
+
+#include "core/atomic_file.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <string_view>
+#include <unordered_set>
+
+namespace lueur {
+namespace {
+
+void append_format(std::string& out, const char* format, float a, float b, float c) {
+  char buffer[128];
+  const int n = std::snprintf(buffer, sizeof buffer, format, static_cast<double>(a), static_cast<double>(b),
+                              static_cast<double>(c));
+  out.append(buffer, static_cast<size_t>(n));
+}
+
+/// A material name that survives `newmtl`/`usemtl`: no blanks or control bytes (usemtl stops at a blank),
+/// not empty, and unique (usemtl of a duplicate would resolve to the first one).
+std::vector<std::string> usable_names(const std::vector<Material>& materials) {
+  std::vector<std::string> names;
+  std::unordered_set<std::string> taken;
+  for (const Material& m : materials) {
+    std::string name = m.name;
+    for (char& c : name) {
+      if (static_cast<unsigned char>(c) <= 0x20 || c == 0x7f) c = '_';
+    }
+    if (name.empty()) name = "material";
+    const std::string base = name;
+    for (int suffix = 2; taken.count(name); ++suffix) name = base + "_" + std::to_string(suffix);
+    taken.insert(name);
+    names.push_back(name);
+  }
+  return names;
+}
+
+}  // namespace
+
+void write_obj(const Scene& scene, const std::string& obj_path) {
+  namespace fs = std::filesystem;
+  fs::path mtl_path = fs::path(obj_path).replace_extension(".mtl");
+  if (mtl_path == fs::path(obj_path)) mtl_path = fs::path(obj_path + ".mtl");  // writing an OBJ named *.mtl
+  const std::string mtl_name = mtl_path.filename().string();
+  const std::vector<std::string> names = usable_names(scene.materials);
+
+  std::string mtl = "# Lueur scene '" + scene.name + "'\n";
+  for (size_t i = 0; i < scene.materials.size(); ++i) {
+    const Material& m = scene.materials[i];
+    mtl += "\nnewmtl " + names[i] + "\n";
+    append_format(mtl, "Kd %.9g %.9g %.9g\n", m.kd.r, m.kd.g, m.kd.b);
+    append_format(mtl, "Ks %.9g %.9g %.9g\n", m.ks.r, m.ks.g, m.ks.b);
+    char buffer[64];
+    const int n = std::snprintf(buffer, sizeof buffer, "Ns %.9g\n", static_cast<double>(m.ns));
+    mtl.append(buffer, static_cast<size_t>(n));
+    append_format(mtl, "Ke %.9g %.9g %.9g\n", m.ke.r, m.ke.g, m.ke.b);
+  }
+
+  std::string obj;
+  obj.reserve(scene.positions.size() * 40 + scene.triangles.size() * 24 + 256);
+  obj += "# Lueur scene '" + scene.name + "'\n";
+  // tinyobjloader splits mtllib names at blanks; a backslash keeps a blank inside one name.
+  std::string escaped;
+  for (char c : mtl_name) {
+    if (c == ' ') escaped += '\\';
+    escaped += c;
+  }
+  obj += "mtllib " + escaped + "\n";
+  for (const Vec3& p : scene.positions) append_format(obj, "v %.9g %.9g %.9g\n", p.x, p.y, p.z);
+
+  uint32_t current = 0xffffffffu;
+  char buffer[80];
+  for (const Triangle& t : scene.triangles) {
+    if (t.material != current && t.material < names.size()) {
+      current = t.material;
+      obj += "usemtl " + names[current] + "\n";
+    }
+    const int n = std::snprintf(buffer, sizeof buffer, "f %u %u %u\n", t.v[0] + 1, t.v[1] + 1, t.v[2] + 1);
+    obj.append(buffer, static_cast<size_t>(n));
+  }
+
+  // The MTL goes first so that a reader never sees an OBJ whose material file does not exist yet.
+  write_file_atomically(mtl_path.string(), mtl);
+  write_file_atomically(obj_path, obj);
+}
+
+}  // namespace lueur
