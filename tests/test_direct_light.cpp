@@ -84,7 +84,7 @@ TEST_P(ClosedBox, RenderedFilmAveragesToRhoLe) {
   settings.blinn_k = 1.0f;
   settings.l1_rays = 8;
   Film film;
-  film.reset(settings.width, settings.height, settings.enabled);
+  film.reset(settings);
   ThreadPool pool(2);
   const Camera camera = make_camera({Vec3(0.0f), Vec3(0.0f, 0.0f, -1.0f), Vec3(0, 1, 0), 70.0f}, 24, 24);
   for (int f = 0; f < 32; ++f) render_frame(*traced, camera, settings, film, pool);

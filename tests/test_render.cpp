@@ -16,7 +16,7 @@ namespace {
 
 Film render_default(const TracedScene& traced, RenderSettings settings, int frames, int threads) {
   Film film;
-  film.reset(settings.width, settings.height, settings.enabled);
+  film.reset(settings);
   ThreadPool pool(threads);
   const DefaultView view;
   const Camera camera = make_camera({view.eye, view.target, view.up, view.fovy_degrees}, settings.width,

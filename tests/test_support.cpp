@@ -83,6 +83,39 @@ Scene make_closed_emitting_box(float h, Vec3 rho, Vec3 le) {
   return s;
 }
 
+Scene make_closed_emitting_sphere(float r, int segments, int rings, Vec3 rho, Vec3 le) {
+  Scene s;
+  s.name = "closed-sphere";
+  Material m;
+  m.name = "inside";
+  m.kd = rho;
+  m.ke = le;
+  s.materials.push_back(m);
+  auto vertex = [&](int ring, int segment) {
+    const float theta = kPi * static_cast<float>(ring) / static_cast<float>(rings);
+    const float phi = 2.0f * kPi * static_cast<float>(segment % segments) / static_cast<float>(segments);
+    return r * Vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+  };
+  auto add_triangle = [&](Vec3 a, Vec3 b, Vec3 c) {
+    // Wind so that the geometric normal points at the centre.
+    if (glm::dot(glm::cross(b - a, c - a), a + b + c) > 0.0f) std::swap(b, c);
+    const auto base = static_cast<uint32_t>(s.positions.size());
+    s.positions.insert(s.positions.end(), {a, b, c});
+    Triangle t;
+    t.v[0] = base, t.v[1] = base + 1, t.v[2] = base + 2;
+    s.triangles.push_back(t);
+  };
+  for (int ring = 0; ring < rings; ++ring)
+    for (int seg = 0; seg < segments; ++seg) {
+      const Vec3 a = vertex(ring, seg), b = vertex(ring, seg + 1), c = vertex(ring + 1, seg + 1),
+                 d = vertex(ring + 1, seg);
+      if (ring > 0) add_triangle(a, b, c);
+      if (ring < rings - 1) add_triangle(a, c, d);
+    }
+  collect_emitters(s);
+  return s;
+}
+
 Scene make_rect_light_over_floor(float w, float h, float height, Vec3 rho, Vec3 le) {
   Scene s;
   s.name = "rect-light";

@@ -35,6 +35,11 @@ namespace lueur::test {
 /// (no Ks, so K = 1 makes them Lambertian). L1 = rho Le and L2 = rho^2 Le everywhere inside.
 Scene make_closed_emitting_box(float half, Vec3 rho, Vec3 le);
 
+/// A closed UV sphere (segments x rings) of radius r around the origin, every triangle facing inwards, emitting
+/// `le` with albedo `rho`. Inside a sphere cos cos / d^2 is constant, so the area-sampled estimators have small,
+/// bounded variance: the closed forms L1 = rho Le and L2 = rho^2 Le can be checked tightly everywhere.
+Scene make_closed_emitting_sphere(float r, int segments, int rings, Vec3 rho, Vec3 le);
+
 /// A w x h rectangle light (two triangles, facing -y) at height `height` above a large diffuse floor at y = 0.
 Scene make_rect_light_over_floor(float w, float h, float height, Vec3 rho, Vec3 le);
 

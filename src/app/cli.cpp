@@ -95,7 +95,7 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv) {
   AppOptions o;
   CLI::App app{"Lueur: a progressive CPU ray tracer of direct (L1) and one-bounce indirect (L2) light", "lueur"};
   app.set_version_flag("--version", "lueur 0.1.0");
-  std::string size, camera, up, passes, weights, lights, smooth = "on", tonemap;
+  std::string size, camera, up, passes, weights, lights, smooth = "on", tonemap, reuse, view;
   app.add_option("scene", o.scene_path, "OBJ scene (default: the embedded Cornell box with an apple)");
   app.add_flag("--headless", o.headless, "render to a file instead of opening a window");
   app.add_option("--out", o.out_path, "output image: .png (tone-mapped sRGB), .pfm (linear), .exr (linear, per pass)");
@@ -103,12 +103,26 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv) {
   app.add_option("--size", size, "image size WIDTHxHEIGHT (default 512x512)");
   app.add_option("--camera", camera, "\"ex ey ez tx ty tz fovy_degrees\"");
   app.add_option("--up", up, "\"x y z\" camera up vector (default 0 1 0)");
-  app.add_option("--passes", passes, "comma-separated passes: le,l1");
+  app.add_option("--passes", passes, "comma-separated passes: le,l1,l2,ao (default le,l1,l2)");
   app.add_option("--weights", weights, "pass weights, e.g. le=1,l1=0.6");
   app.add_option("--lights", lights, "light sampling: all|uniform|area|power (default area)");
   app.add_option("--l1-rays", o.render.l1_rays, "shadow rays per pixel per frame (default 16)")->check(CLI::Range(0, 4096));
   app.add_option("--blinn-k", o.render.blinn_k, "Lambert share K of the Blinn-Phong mix (default 0.7)")
       ->check(CLI::Range(0.0f, 1.0f));
+  app.add_option("--l2-rays", o.render.l2_rays, "L2 bounce rays per pixel per frame (default 16)")
+      ->check(CLI::Range(0, 4096));
+  app.add_option("--reuse", reuse, "L1 reuse for L2: off|frame|average (default frame)");
+  app.add_option("--recompute-ratio", o.render.recompute_ratio,
+                 "share of the L1 rays used to recompute L1 where it cannot be reused (default 0.125)")
+      ->check(CLI::Range(0.0f, 16.0f));
+  app.add_flag("--reuse-diffuse-only", o.render.reuse_diffuse_only,
+               "reuse only the view-independent part of L1 (no bias on glossy surfaces)");
+  app.add_option("--ao-rays", o.render.ao_rays, "AO rays per pixel per frame (default 16)")->check(CLI::Range(0, 4096));
+  app.add_option("--ao-radius", o.render.ao_radius, "AO radius in world units (default: scene diagonal / 10)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--view", view,
+                 "what the PNG/PFM shows: combined (default), a pass (le|l1|l2|ao) or l2-reused|l2-recomputed|"
+                 "reuse-fraction|l1-diffuse");
   app.add_option("--smooth-normals", smooth, "on|off: compute smooth normals for files without them (default on)");
   app.add_option("--seed", o.render.seed, "random seed (default 0)");
   app.add_option("--threads", o.threads, "worker threads (default: all cores)")->check(CLI::Range(0, 1024));
@@ -135,6 +149,8 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv) {
   if (!passes.empty()) parse_passes(passes, o.render);
   if (!weights.empty()) parse_weights(weights, o.weights);
   if (!lights.empty()) o.render.lights = parse_enum<LightStrategy>("--lights", kLightStrategyNames, lights);
+  if (!reuse.empty()) o.render.reuse = parse_enum<ReuseMode>("--reuse", kReuseModeNames, reuse);
+  if (!view.empty() && view != "combined") o.view = parse_enum<Layer>("--view", kLayerNames, view);
   if (!tonemap.empty()) o.display.tonemap = parse_enum<ToneMap>("--tonemap", kToneMapNames, tonemap);
   if (smooth == "on")
     o.smooth_normals = true;
@@ -177,6 +193,12 @@ std::string describe_options(const AppOptions& o) {
   for (int p = 0; p < kPassCount; ++p)
     s << (p ? "," : "") << kPassNames[static_cast<size_t>(p)] << "=" << o.weights[static_cast<size_t>(p)];
   s << " --lights " << enum_name(kLightStrategyNames, o.render.lights) << " --l1-rays " << o.render.l1_rays
+    << " --l2-rays " << o.render.l2_rays << " --reuse " << enum_name(kReuseModeNames, o.render.reuse)
+    << " --recompute-ratio " << o.render.recompute_ratio << (o.render.reuse_diffuse_only ? " --reuse-diffuse-only" : "")
+    << " --ao-rays " << o.render.ao_rays;
+  if (o.render.ao_radius > 0.0f) s << " --ao-radius " << o.render.ao_radius;
+  if (o.view) s << " --view " << enum_name(kLayerNames, *o.view);
+  s
     << " --blinn-k " << o.render.blinn_k << " --smooth-normals " << (o.smooth_normals ? "on" : "off") << " --seed "
     << o.render.seed << " --exposure " << o.display.exposure << " --tonemap "
     << enum_name(kToneMapNames, o.display.tonemap);

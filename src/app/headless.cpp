@@ -48,7 +48,10 @@ int run_headless(const AppOptions& options) {
   const Camera camera = make_camera(view, settings.width, settings.height);
 
   Film film;
-  film.reset(settings.width, settings.height, settings.enabled);
+  film.reset(settings);
+  if (options.view && !film.has(*options.view))
+    throw UsageError("--view " + std::string(enum_name(kLayerNames, *options.view)) +
+                     ": that layer is not rendered with these --passes/--reuse settings");
   ThreadPool pool(options.threads);
   const TracedScene& traced = *opened.traced;
   std::fprintf(stderr, "lueur: %s, %zu triangles, %zu emitters, %dx%d, %d frames, %d threads\n",
@@ -57,10 +60,15 @@ int run_headless(const AppOptions& options) {
 
   const Clock::time_point start = Clock::now();
   Clock::time_point last_progress = start;
-  uint64_t rays = 0;
+  uint64_t rays = 0, bounce_hits = 0, reused = 0;
+  double l2_seconds = 0.0;
   const bool tty = ::isatty(STDERR_FILENO);
   for (int f = 0; f < options.frames; ++f) {
-    rays += render_frame(traced, camera, settings, film, pool).rays;
+    const FrameResult frame = render_frame(traced, camera, settings, film, pool);
+    rays += frame.rays;
+    bounce_hits += frame.l2_bounce_hits;
+    reused += frame.l2_reused;
+    l2_seconds += frame.l2_seconds;
     const double elapsed = seconds_since(start);
     if (f + 1 == options.frames || std::chrono::duration<double>(Clock::now() - last_progress).count() > 0.5) {
       last_progress = Clock::now();
@@ -72,15 +80,21 @@ int run_headless(const AppOptions& options) {
   const double elapsed = seconds_since(start);
   if (tty) std::fprintf(stderr, "\n");
 
+  // The EXR holds every rendered layer; PNG and PFM show the combined image or the chosen --view.
   std::vector<NamedImage> layers;
-  for (int p = 0; p < kPassCount; ++p)
-    if (settings.enabled[static_cast<size_t>(p)])
-      layers.push_back({std::string(kPassNames[static_cast<size_t>(p)]), pass_average(film, static_cast<Pass>(p))});
-  const Image combined = combine_passes(film, settings.enabled, options.weights);
-  write_image(options.out_path, combined, layers, options.display, describe_options(options));
+  for (int l = 0; l < kLayerCount; ++l)
+    if (film.has(static_cast<Layer>(l)))
+      layers.push_back({std::string(kLayerNames[static_cast<size_t>(l)]), layer_average(film, static_cast<Layer>(l))});
+  const Image shown = options.view ? layer_average(film, *options.view)
+                                   : combine_passes(film, settings.enabled, options.weights);
+  write_image(options.out_path, shown, layers, options.display, describe_options(options));
 
   std::fprintf(stderr, "lueur: %d frames in %.2f s, %.1f M rays traced (%.2f Mrays/s)\n", options.frames, elapsed,
                static_cast<double>(rays) * 1e-6, elapsed > 0.0 ? static_cast<double>(rays) * 1e-6 / elapsed : 0.0);
+  if (settings.pass_enabled(Pass::kL2))
+    std::fprintf(stderr, "lueur: L2 took %.2f s; %.1f%% of its %.1f M bounce hits reused L1 (--reuse %s)\n",
+                 l2_seconds, bounce_hits ? 100.0 * static_cast<double>(reused) / static_cast<double>(bounce_hits) : 0.0,
+                 static_cast<double>(bounce_hits) * 1e-6, std::string(enum_name(kReuseModeNames, settings.reuse)).c_str());
   std::printf("%s\n", options.out_path.c_str());
   return 0;
 }

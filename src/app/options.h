@@ -29,6 +29,7 @@ struct AppOptions {
   DisplaySettings display;
   std::optional<CameraSpec> camera;  ///< unset: the scene's default view
   std::optional<Vec3> up;
+  std::optional<Layer> view;  ///< unset: the weighted combination of the passes
   std::string export_default_scene;  ///< when set: write the embedded scene as OBJ + MTL there and exit
 };
 

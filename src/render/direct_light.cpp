@@ -8,32 +8,28 @@
 namespace lueur {
 namespace {
 
-/// Contribution of one uniform point on emitter `table_index`, divided by the area pdf (not by the pmf).
-Vec3 sample_emitter(const TracedScene& traced, const SurfacePoint& sp, const DirectLightOptions& options,
-                    uint32_t table_index, float u1, float u2, uint64_t& rays_traced) {
+/// Light arriving at the surface from one uniform point on emitter `table_index`: Le cos_p cos_l area / d^2
+/// (divided by the area pdf, not by the pmf), zero when the point is hidden or faces away. `wi` receives the
+/// direction to the point.
+Vec3 sample_emitter(const TracedScene& traced, const SurfacePoint& sp, uint32_t table_index, float u1, float u2,
+                    Vec3& wi, uint64_t& rays_traced) {
   const Scene& scene = traced.scene;
   const uint32_t tri = traced.lights.triangles[table_index];
   const Vec2 b = sample_uniform_triangle(u1, u2);
   const Vec3 light_point = scene.point(tri, b.x, b.y);
   const Vec3 light_normal_raw = scene.geometric_normal_raw(tri);
 
-  Vec3 to_light = light_point - sp.position;
+  const Vec3 to_light = light_point - sp.position;
   const float distance2 = glm::dot(to_light, to_light);
   if (!(distance2 > 0.0f)) return Vec3(0.0f);
-  const float distance = std::sqrt(distance2);
-  const Vec3 wi = to_light / distance;
+  wi = to_light / std::sqrt(distance2);
 
   // Emitters shine on the side of their geometric normal only.
   const float cos_light = -glm::dot(light_normal_raw, wi) / glm::length(light_normal_raw);
-  if (cos_light <= 0.0f) return Vec3(0.0f);
+  if (!(cos_light > 0.0f)) return Vec3(0.0f);
   // Light must arrive on the side the surface is seen from, by both normals (no leaks through the surface).
   const float cos_surface = glm::dot(sp.shading_normal, wi);
   if (cos_surface <= 0.0f || glm::dot(sp.geometric_normal, wi) <= 0.0f) return Vec3(0.0f);
-
-  const Material& material = scene.material_of(sp.triangle);
-  const Vec3 f = options.diffuse_only ? eval_brdf_diffuse(material, options.blinn_k)
-                                      : eval_brdf(material, sp.shading_normal, wi, sp.wo, options.blinn_k);
-  if (f.r <= 0.0f && f.g <= 0.0f && f.b <= 0.0f) return Vec3(0.0f);
 
   Ray shadow;
   shadow.origin = offset_origin(sp.position, sp.geometric_normal, wi);
@@ -44,30 +40,43 @@ Vec3 sample_emitter(const TracedScene& traced, const SurfacePoint& sp, const Dir
   if (intersect_any(traced.bvh, shadow)) return Vec3(0.0f);
 
   const float area = traced.lights.areas[table_index];
-  return scene.material_of(tri).ke * f * (cos_surface * cos_light * area / distance2);
+  return scene.material_of(tri).ke * (cos_surface * cos_light * area / distance2);
 }
 
 }  // namespace
 
 Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, const DirectLightOptions& options,
-                           Pcg32& rng, uint64_t& rays_traced) {
+                           Pcg32& rng, uint64_t& rays_traced, Vec3* diffuse_part) {
   const LightTable& table = traced.lights;
+  if (diffuse_part) *diffuse_part = Vec3(0.0f);
   if (table.empty() || options.rays <= 0) return Vec3(0.0f);
-  Vec3 sum(0.0f);
+  const Material& material = traced.scene.material_of(sp.triangle);
+  const Vec3 f_diffuse = eval_brdf_diffuse(material, options.blinn_k);
+
+  Vec3 sum(0.0f), diffuse_sum(0.0f);
+  auto accumulate = [&](const Vec3& arriving, const Vec3& wi) {
+    if (arriving.r <= 0.0f && arriving.g <= 0.0f && arriving.b <= 0.0f) return;
+    Vec3 f = eval_brdf(material, sp.shading_normal, wi, sp.wo, options.blinn_k);
+    if (options.specular_only) f -= f_diffuse;
+    sum += arriving * f;
+    diffuse_sum += arriving * f_diffuse;
+  };
   for (int s = 0; s < options.rays; ++s) {
+    Vec3 wi(0.0f);
     if (options.strategy == LightStrategy::kAll) {
       for (uint32_t i = 0; i < table.size(); ++i) {
         const float u1 = rng.next_float(), u2 = rng.next_float();
-        sum += sample_emitter(traced, sp, options, i, u1, u2, rays_traced);
+        accumulate(sample_emitter(traced, sp, i, u1, u2, wi, rays_traced), wi);
       }
     } else {
       const LightChoice choice = choose_light(table, options.strategy, rng.next_float());
       const float u1 = rng.next_float(), u2 = rng.next_float();
-      if (choice.pmf > 0.0f)
-        sum += sample_emitter(traced, sp, options, choice.index, u1, u2, rays_traced) / choice.pmf;
+      if (choice.pmf > 0.0f) accumulate(sample_emitter(traced, sp, choice.index, u1, u2, wi, rays_traced) / choice.pmf, wi);
     }
   }
-  return sum / static_cast<float>(options.rays);
+  const float inv = 1.0f / static_cast<float>(options.rays);
+  if (diffuse_part) *diffuse_part = diffuse_sum * inv;
+  return sum * inv;
 }
 
 }  // namespace lueur

@@ -12,12 +12,13 @@ struct DirectLightOptions {
   LightStrategy strategy = LightStrategy::kArea;
   int rays = 16;           ///< samples; with kAll each sample sends one shadow ray to every emitter
   float blinn_k = 0.7f;
-  bool diffuse_only = false;  ///< evaluate only the view-independent part of the BRDF
+  bool specular_only = false;  ///< evaluate only the view-dependent part of the BRDF (BRDF minus its diffuse part)
 };
 
 /// Radiance reflected towards `sp.wo` from the emitters, averaged over `options.rays` samples.
-/// Unbiased for every strategy. Adds the shadow rays it traced to `rays_traced`.
+/// Unbiased for every strategy. Adds the shadow rays it traced to `rays_traced`. When `diffuse_part` is given it
+/// receives, from the same samples, the part reflected by the view-independent term of the BRDF alone.
 Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, const DirectLightOptions& options,
-                           Pcg32& rng, uint64_t& rays_traced);
+                           Pcg32& rng, uint64_t& rays_traced, Vec3* diffuse_part = nullptr);
 
 }  // namespace lueur

@@ -3,22 +3,22 @@
 
 namespace lueur {
 
-void Film::reset(int new_width, int new_height, const std::array<bool, kPassCount>& enabled) {
+void Film::reset(int new_width, int new_height, const std::array<bool, kLayerCount>& layers) {
   width = new_width;
   height = new_height;
   frames = 0;
-  for (int p = 0; p < kPassCount; ++p) {
-    auto& sum = sums[static_cast<size_t>(p)];
-    if (enabled[static_cast<size_t>(p)])
+  for (int l = 0; l < kLayerCount; ++l) {
+    auto& sum = sums[static_cast<size_t>(l)];
+    if (layers[static_cast<size_t>(l)])
       sum.assign(3 * pixel_count(), 0.0f);
     else
       sum.clear();
   }
 }
 
-Image pass_average(const Film& film, Pass pass) {
+Image layer_average(const Film& film, Layer layer) {
   Image image{film.width, film.height, std::vector<float>(3 * film.pixel_count(), 0.0f)};
-  const auto& sum = film.sums[static_cast<size_t>(pass)];
+  const auto& sum = film.sums[static_cast<size_t>(layer)];
   if (sum.empty() || film.frames == 0) return image;
   const float scale = 1.0f / static_cast<float>(film.frames);
   for (size_t i = 0; i < sum.size(); ++i) image.rgb[i] = sum[i] * scale;

@@ -21,17 +21,20 @@ struct Image {
 
 struct Film {
   int width = 0, height = 0;
-  std::array<std::vector<float>, kPassCount> sums;  ///< per pass, 3 x width x height; empty when never enabled
+  std::array<std::vector<float>, kLayerCount> sums;  ///< per layer, 3 x width x height; empty when not rendered
   uint64_t frames = 0;
 
-  /// Sizes the buffers for the enabled passes and clears everything.
-  void reset(int new_width, int new_height, const std::array<bool, kPassCount>& enabled);
+  /// Sizes the buffers for the layers these settings need and clears everything.
+  void reset(int new_width, int new_height, const std::array<bool, kLayerCount>& layers);
+  void reset(const RenderSettings& settings) { reset(settings.width, settings.height, layers_needed(settings)); }
   size_t pixel_count() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
-  bool has(Pass p) const { return !sums[static_cast<size_t>(p)].empty(); }
+  bool has(Layer l) const { return !sums[static_cast<size_t>(l)].empty(); }
+  bool has(Pass p) const { return has(layer_of(p)); }
 };
 
-/// The running average of one pass (black if the pass has no samples).
-Image pass_average(const Film& film, Pass pass);
+/// The running average of one layer (black if the layer has no samples).
+Image layer_average(const Film& film, Layer layer);
+inline Image pass_average(const Film& film, Pass pass) { return layer_average(film, layer_of(pass)); }
 
 /// sum over enabled passes of weight x average(pass).
 Image combine_passes(const Film& film, const std::array<bool, kPassCount>& enabled,

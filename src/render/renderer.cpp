@@ -1,85 +1,166 @@
-// One frame: a jittered primary ray per pixel, then the enabled passes at its first hit. Each pixel's results are
-// written to a frame buffer and added to the film only once the whole frame has finished, so a cancelled frame
-// leaves no trace.
+// One frame in two phases over the tiles. Phase 1: a jittered primary ray per pixel, Le, L1 and AO at its first
+// hit, and the screen buffer L2 reuses. Phase 2: L2, which may read any pixel's phase-1 L1. Results go to per-frame
+// buffers and are added to the film only once the whole frame has finished, so a cancelled frame leaves no trace
+// and every pixel's sums see the same sequence of additions whatever the thread count.
 #include "render/renderer.h"
 
 #include "render/direct_light.h"
+#include "render/indirect_light.h"
+
+#include <chrono>
 
 namespace lueur {
 namespace {
 
-struct PixelSamples {
-  std::array<Vec3, kPassCount> value{};
+struct FrameBuffers {
+  std::array<std::vector<Vec3>, kLayerCount> values;  ///< this frame's value per needed layer and pixel
+  std::vector<SurfacePoint> hits;                       ///< primary hit per pixel (triangle kNoHit: none)
+  ScreenBuffer screen;
 };
 
-/// Everything one pixel contributes to one frame.
-PixelSamples trace_pixel(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, int x,
-                         int y, uint64_t frame, uint64_t& rays) {
-  PixelSamples out;
-  const uint64_t pixel = static_cast<uint64_t>(y) * static_cast<uint64_t>(camera.width) + static_cast<uint64_t>(x);
+uint64_t pixel_index(int x, int y, int width) {
+  return static_cast<uint64_t>(y) * static_cast<uint64_t>(width) + static_cast<uint64_t>(x);
+}
+
+void set_layer(FrameBuffers& frame, Layer layer, size_t pixel, const Vec3& value) {
+  auto& values = frame.values[static_cast<size_t>(layer)];
+  if (!values.empty()) values[pixel] = value;
+}
+
+/// Phase 1 for one pixel.
+void trace_primary(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, const Film& film,
+                   int x, int y, uint64_t frame, FrameBuffers& out, uint64_t& rays) {
+  const size_t i = pixel_index(x, y, camera.width);
+  const uint64_t pixel = i;
   Pcg32 camera_rng = make_pixel_rng(settings.seed, pixel, frame, RngPurpose::kCamera);
   const float jx = camera_rng.next_float(), jy = camera_rng.next_float();
   const Ray ray = camera_ray(camera, static_cast<float>(x) + jx, static_cast<float>(y) + jy);
   ++rays;
   const Hit hit = intersect_closest(traced.bvh, ray);
-  if (!hit.found()) return out;
+  if (!hit.found()) return;
 
   const SurfacePoint sp = make_surface_point(traced.scene, ray, hit);
+  out.hits[i] = sp;
+  out.screen.triangle[i] = hit.triangle;
+  out.screen.position[i] = sp.position;
   const Material& material = traced.scene.material_of(hit.triangle);
-  if (settings.pass_enabled(Pass::kLe) && sp.front_face) out.value[static_cast<size_t>(Pass::kLe)] = material.ke;
+  if (sp.front_face) set_layer(out, Layer::kLe, i, material.ke);
 
-  if (settings.pass_enabled(Pass::kL1)) {
+  const bool l2 = settings.pass_enabled(Pass::kL2);
+  const bool screen_needs_l1 = l2 && settings.reuse != ReuseMode::kOff;
+  if (settings.pass_enabled(Pass::kL1) || screen_needs_l1) {
     Pcg32 rng = make_pixel_rng(settings.seed, pixel, frame, RngPurpose::kDirect);
     DirectLightOptions options;
     options.strategy = settings.lights;
     options.rays = settings.l1_rays;
     options.blinn_k = settings.blinn_k;
-    out.value[static_cast<size_t>(Pass::kL1)] = estimate_direct_light(traced, sp, options, rng, rays);
+    Vec3 diffuse(0.0f);
+    const Vec3 l1 = estimate_direct_light(traced, sp, options, rng, rays, &diffuse);
+    set_layer(out, Layer::kL1, i, l1);
+    set_layer(out, Layer::kL1Diffuse, i, diffuse);
+    const Vec3 screen_l1 = settings.reuse_diffuse_only ? diffuse : l1;
+    out.screen.l1[i] = screen_l1;
+    if (screen_needs_l1 && settings.reuse == ReuseMode::kAverage) {
+      // The running average including this frame: less noisy than this frame alone.
+      const auto& sums = film.sums[static_cast<size_t>(settings.reuse_diffuse_only ? Layer::kL1Diffuse : Layer::kL1)];
+      const Vec3 previous(sums[3 * i], sums[3 * i + 1], sums[3 * i + 2]);
+      out.screen.l1_average[i] = (previous + screen_l1) / static_cast<float>(film.frames + 1);
+    }
   }
-  return out;
+  if (settings.pass_enabled(Pass::kAo)) {
+    Pcg32 rng = make_pixel_rng(settings.seed, pixel, frame, RngPurpose::kOcclusion);
+    set_layer(out, Layer::kAo, i,
+              estimate_ambient_occlusion(traced, sp, settings.ao_rays, ambient_occlusion_radius(traced, settings), rng,
+                                         rays));
+  }
 }
+
+/// Phase 2 for one pixel.
+void trace_indirect(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, int x, int y,
+                    uint64_t frame, FrameBuffers& out, uint64_t& rays, uint64_t& bounce_hits, uint64_t& reused) {
+  const size_t i = pixel_index(x, y, camera.width);
+  const SurfacePoint& sp = out.hits[i];
+  if (sp.triangle == kNoHit) return;
+  Pcg32 bounce_rng = make_pixel_rng(settings.seed, i, frame, RngPurpose::kIndirect);
+  Pcg32 recompute_rng = make_pixel_rng(settings.seed, i, frame, RngPurpose::kRecompute);
+  const IndirectResult r =
+      estimate_indirect_light(traced, camera, out.screen, sp, settings, bounce_rng, recompute_rng, rays);
+  set_layer(out, Layer::kL2, i, r.l2);
+  set_layer(out, Layer::kL2Reused, i, r.from_reused);
+  set_layer(out, Layer::kL2Recomputed, i, r.from_recomputed);
+  const float fraction = r.bounce_hits > 0 ? static_cast<float>(r.reused) / static_cast<float>(r.bounce_hits) : 0.0f;
+  set_layer(out, Layer::kReuseFraction, i, Vec3(fraction));
+  bounce_hits += static_cast<uint64_t>(r.bounce_hits);
+  reused += static_cast<uint64_t>(r.reused);
+}
+
+/// Runs `per_pixel(x, y, worker)` over every pixel, one tile per task.
+template <typename PerPixel>
+void for_each_tile(ThreadPool& pool, int width, int height, const std::atomic<bool>* cancel, PerPixel&& per_pixel) {
+  const int tiles_x = (width + kTileSize - 1) / kTileSize, tiles_y = (height + kTileSize - 1) / kTileSize;
+  pool.parallel_for(tiles_x * tiles_y, [&](int tile, int worker) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) return;
+    const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
+    const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) per_pixel(x, y, worker);
+  });
+}
+
+/// Per-worker counters, padded apart so that workers do not share cache lines.
+struct alignas(64) WorkerCounters {
+  uint64_t rays = 0, bounce_hits = 0, reused = 0;
+};
 
 }  // namespace
 
 FrameResult render_frame(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, Film& film,
                          ThreadPool& pool, const std::atomic<bool>* cancel) {
+  using Clock = std::chrono::steady_clock;
   FrameResult result;
   const int width = film.width, height = film.height;
-  const int tiles_x = (width + kTileSize - 1) / kTileSize, tiles_y = (height + kTileSize - 1) / kTileSize;
   const uint64_t frame = film.frames;
 
-  std::array<std::vector<Vec3>, kPassCount> frame_values;
-  for (int p = 0; p < kPassCount; ++p)
-    if (film.has(static_cast<Pass>(p))) frame_values[static_cast<size_t>(p)].assign(film.pixel_count(), Vec3(0.0f));
+  FrameBuffers buffers;
+  for (int l = 0; l < kLayerCount; ++l)
+    if (film.has(static_cast<Layer>(l))) buffers.values[static_cast<size_t>(l)].assign(film.pixel_count(), Vec3(0.0f));
+  SurfacePoint none;
+  none.triangle = kNoHit;
+  buffers.hits.assign(film.pixel_count(), none);
+  buffers.screen.resize(width, height);
+  if (settings.pass_enabled(Pass::kL2) && settings.reuse == ReuseMode::kAverage)
+    buffers.screen.l1_average.assign(film.pixel_count(), Vec3(0.0f));
 
-  std::vector<uint64_t> worker_rays(static_cast<size_t>(pool.thread_count()), 0);
-  pool.parallel_for(tiles_x * tiles_y, [&](int tile, int worker) {
-    if (cancel && cancel->load(std::memory_order_relaxed)) return;
-    const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
-    const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
-    uint64_t rays = 0;
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) {
-        const PixelSamples s = trace_pixel(traced, camera, settings, x, y, frame, rays);
-        const size_t i = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
-        for (size_t p = 0; p < kPassCount; ++p)
-          if (!frame_values[p].empty()) frame_values[p][i] = s.value[p];
-      }
-    worker_rays[static_cast<size_t>(worker)] += rays;
+  std::vector<WorkerCounters> counters(static_cast<size_t>(pool.thread_count()));
+  for_each_tile(pool, width, height, cancel, [&](int x, int y, int worker) {
+    trace_primary(traced, camera, settings, film, x, y, frame, buffers, counters[static_cast<size_t>(worker)].rays);
   });
-  for (const uint64_t r : worker_rays) result.rays += r;
+  if (settings.pass_enabled(Pass::kL2)) {
+    const Clock::time_point l2_start = Clock::now();
+    for_each_tile(pool, width, height, cancel, [&](int x, int y, int worker) {
+      WorkerCounters& c = counters[static_cast<size_t>(worker)];
+      trace_indirect(traced, camera, settings, x, y, frame, buffers, c.rays, c.bounce_hits, c.reused);
+    });
+    result.l2_seconds = std::chrono::duration<double>(Clock::now() - l2_start).count();
+  }
+  for (const WorkerCounters& c : counters) {
+    result.rays += c.rays;
+    result.l2_bounce_hits += c.bounce_hits;
+    result.l2_reused += c.reused;
+  }
 
   if (cancel && cancel->load()) {
     result.completed = false;
     return result;
   }
-  for (size_t p = 0; p < kPassCount; ++p) {
-    if (frame_values[p].empty()) continue;
-    float* sum = film.sums[p].data();
-    for (size_t i = 0; i < frame_values[p].size(); ++i) {
-      sum[3 * i] += frame_values[p][i].r;
-      sum[3 * i + 1] += frame_values[p][i].g;
-      sum[3 * i + 2] += frame_values[p][i].b;
+  for (size_t l = 0; l < kLayerCount; ++l) {
+    const std::vector<Vec3>& values = buffers.values[l];
+    if (values.empty()) continue;
+    float* sum = film.sums[l].data();
+    for (size_t i = 0; i < values.size(); ++i) {
+      sum[3 * i] += values[i].r;
+      sum[3 * i + 1] += values[i].g;
+      sum[3 * i + 2] += values[i].b;
     }
   }
   ++film.frames;

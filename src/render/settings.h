@@ -4,7 +4,9 @@
 
 #include "core/math.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -25,6 +27,15 @@ inline constexpr std::array<std::string_view, 4> kLightStrategyNames = {"all", "
 enum class ReuseMode : int { kOff = 0, kFrame = 1, kAverage = 2 };
 inline constexpr std::array<std::string_view, 3> kReuseModeNames = {"off", "frame", "average"};
 
+/// What the film accumulates: the four passes, then the layers that explain L2's screen-space reuse
+/// (report figures 7 and 8) and the per-pixel fraction of L2 rays that reused L1.
+/// `l1-diffuse` is the view-independent part of L1, kept when L2 reuses its running average diffuse-only.
+enum class Layer : int { kLe = 0, kL1, kL2, kAo, kL2Reused, kL2Recomputed, kReuseFraction, kL1Diffuse };
+inline constexpr int kLayerCount = 8;
+inline constexpr std::array<std::string_view, kLayerCount> kLayerNames = {
+    "le", "l1", "l2", "ao", "l2-reused", "l2-recomputed", "reuse-fraction", "l1-diffuse"};
+inline constexpr Layer layer_of(Pass p) { return static_cast<Layer>(static_cast<int>(p)); }
+
 /// Finds `name` in a name table; nullopt when it is not there.
 template <typename Enum, size_t N>
 std::optional<Enum> enum_from_name(const std::array<std::string_view, N>& names, std::string_view name) {
@@ -41,14 +52,28 @@ std::string_view enum_name(const std::array<std::string_view, N>& names, Enum va
 struct RenderSettings {
   int width = 512;
   int height = 512;
-  std::array<bool, kPassCount> enabled = {true, true, false, false};
+  std::array<bool, kPassCount> enabled = {true, true, true, false};
   LightStrategy lights = LightStrategy::kArea;
   int l1_rays = 16;        ///< shadow rays per pixel per frame
   float blinn_k = 0.7f;    ///< the report's Lambert share for materials without Ks
+  int l2_rays = 16;        ///< cosine-weighted bounce rays per pixel per frame
+  ReuseMode reuse = ReuseMode::kFrame;
+  float recompute_ratio = 0.125f;   ///< L1(q) is recomputed with this share of l1_rays (at least one ray)
+  bool reuse_diffuse_only = false;  ///< reuse only the view-independent part of L1; recompute the rest
+  int ao_rays = 16;
+  float ao_radius = 0.0f;  ///< world units; 0 or less: a tenth of the scene's bounding-box diagonal
   uint64_t seed = 0;
 
   bool pass_enabled(Pass p) const { return enabled[static_cast<size_t>(p)]; }
+  /// Shadow rays for a recomputed L1(q).
+  int recompute_rays() const {
+    return std::max(1, static_cast<int>(std::lround(recompute_ratio * static_cast<float>(l1_rays))));
+  }
 };
+
+/// The film layers a frame must fill for these settings: the enabled passes, L1 also when L2 reuses its running
+/// average, and the reuse layers whenever L2 runs.
+std::array<bool, kLayerCount> layers_needed(const RenderSettings& settings);
 
 /// The report's pass weights: Le 1, L1 0.6, L2 0.4, AO 1.
 inline constexpr std::array<float, kPassCount> kReportWeights = {1.0f, 0.6f, 0.4f, 1.0f};

@@ -1,0 +1,145 @@
+// L2 with screen-space reuse, and ambient occlusion.
+#include "render/indirect_light.h"
+
+#include "core/sampling.h"
+#include "render/brdf.h"
+#include "render/direct_light.h"
+
+namespace lueur {
+namespace {
+
+/// How far, in pixel footprints on q's plane, a pixel's primary hit may lie from q and still count as q. Both lie
+/// in the same pixel, so their distance is at most the pixel's diagonal (sqrt 2) in that measure.
+constexpr float kReuseFootprints = 1.5f;
+
+}  // namespace
+
+int find_reusable_pixel(const Camera& camera, const ScreenBuffer& screen, uint32_t triangle, const Vec3& q,
+                        const Vec3& q_normal) {
+  float x = 0.0f, y = 0.0f;
+  if (!project_to_pixel(camera, q, x, y)) return -1;
+  const int px = std::min(static_cast<int>(x), screen.width - 1), py = std::min(static_cast<int>(y), screen.height - 1);
+  const size_t i = static_cast<size_t>(py) * static_cast<size_t>(screen.width) + static_cast<size_t>(px);
+  if (screen.triangle[i] != triangle) return -1;
+  // The pixel's footprint at q's depth, stretched by the obliquity of q's plane to the view ray.
+  const Vec3 to_q = q - camera.eye;
+  const float distance = glm::length(to_q);
+  const float depth = glm::dot(to_q, camera.forward);
+  const float footprint = 2.0f * camera.tan_half_fovy * depth / static_cast<float>(camera.height);
+  const float obliquity = std::max(std::fabs(glm::dot(to_q, q_normal)) / distance, 0.05f);
+  const float tolerance = kReuseFootprints * footprint / obliquity;
+  if (glm::length(screen.position[i] - q) > tolerance) return -1;
+  return static_cast<int>(i);
+}
+
+namespace {
+
+/// A direction on the cosine-weighted hemisphere around the shading normal, or false when it dips below the
+/// geometric surface (such rays would leak through it and count as zero).
+bool sample_bounce(const SurfacePoint& sp, Pcg32& rng, Vec3& wi, float& cos_theta) {
+  const float u1 = rng.next_float(), u2 = rng.next_float();
+  const Vec3 local = sample_cosine_hemisphere(u1, u2);
+  wi = Frame::from_normal(sp.shading_normal).to_world(local);
+  cos_theta = local.z;
+  return cos_theta > 0.0f && glm::dot(wi, sp.geometric_normal) > 0.0f;
+}
+
+}  // namespace
+
+void ScreenBuffer::resize(int w, int h) {
+  width = w;
+  height = h;
+  const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
+  triangle.assign(n, kNoHit);
+  position.assign(n, Vec3(0.0f));
+  l1.assign(n, Vec3(0.0f));
+  l1_average.clear();
+}
+
+IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& camera, const ScreenBuffer& screen,
+                                       const SurfacePoint& sp, const RenderSettings& settings, Pcg32& bounce_rng,
+                                       Pcg32& recompute_rng, uint64_t& rays_traced) {
+  IndirectResult result;
+  if (settings.l2_rays <= 0) return result;
+  const Scene& scene = traced.scene;
+  const Material& material = scene.material_of(sp.triangle);
+
+  DirectLightOptions recompute;
+  recompute.strategy = settings.lights;
+  recompute.rays = settings.recompute_rays();
+  recompute.blinn_k = settings.blinn_k;
+
+  for (int s = 0; s < settings.l2_rays; ++s) {
+    Vec3 wi;
+    float cos_theta = 0.0f;
+    if (!sample_bounce(sp, bounce_rng, wi, cos_theta)) continue;
+    Ray bounce;
+    bounce.origin = offset_origin(sp.position, sp.geometric_normal, wi);
+    bounce.dir = wi;
+    ++rays_traced;
+    const Hit hit = intersect_closest(traced.bvh, bounce);
+    if (!hit.found()) continue;
+    ++result.bounce_hits;
+    const SurfacePoint q = make_surface_point(scene, bounce, hit);
+
+    // L1(q) toward p: from the screen where the camera saw q, otherwise traced anew.
+    Vec3 l1_q(0.0f);
+    bool reused = false;
+    if (settings.reuse != ReuseMode::kOff) {
+      const int pixel = find_reusable_pixel(camera, screen, hit.triangle, q.position, q.geometric_normal);
+      if (pixel >= 0) {
+        reused = true;
+        const size_t i = static_cast<size_t>(pixel);
+        l1_q = settings.reuse == ReuseMode::kAverage ? screen.l1_average[i] : screen.l1[i];
+        if (settings.reuse_diffuse_only) {
+          // The screen holds only the view-independent part; the view-dependent rest is traced toward p.
+          const Material& mq = scene.material_of(hit.triangle);
+          if (mq.has_specular() || settings.blinn_k < 1.0f) {
+            DirectLightOptions rest = recompute;
+            rest.specular_only = true;
+            l1_q += estimate_direct_light(traced, q, rest, recompute_rng, rays_traced);
+          }
+        }
+      }
+    }
+    if (!reused) l1_q = estimate_direct_light(traced, q, recompute, recompute_rng, rays_traced);
+
+    // f cos / pdf with pdf = cos / pi.
+    const Vec3 contribution = eval_brdf(material, sp.shading_normal, wi, sp.wo, settings.blinn_k) * kPi * l1_q;
+    if (reused) {
+      result.from_reused += contribution;
+      ++result.reused;
+    } else {
+      result.from_recomputed += contribution;
+    }
+  }
+  const float inv = 1.0f / static_cast<float>(settings.l2_rays);
+  result.from_reused *= inv;
+  result.from_recomputed *= inv;
+  result.l2 = result.from_reused + result.from_recomputed;
+  return result;
+}
+
+Vec3 estimate_ambient_occlusion(const TracedScene& traced, const SurfacePoint& sp, int rays, float radius, Pcg32& rng,
+                                uint64_t& rays_traced) {
+  if (rays <= 0) return Vec3(0.0f);
+  int open = 0;
+  for (int s = 0; s < rays; ++s) {
+    Vec3 wi;
+    float cos_theta = 0.0f;
+    if (!sample_bounce(sp, rng, wi, cos_theta)) continue;
+    Ray ray;
+    ray.origin = offset_origin(sp.position, sp.geometric_normal, wi);
+    ray.dir = wi;
+    ray.tmax = radius;
+    ++rays_traced;
+    if (!intersect_any(traced.bvh, ray)) ++open;
+  }
+  return traced.scene.material_of(sp.triangle).kd * (static_cast<float>(open) / static_cast<float>(rays));
+}
+
+float ambient_occlusion_radius(const TracedScene& traced, const RenderSettings& settings) {
+  return settings.ao_radius > 0.0f ? settings.ao_radius : 0.1f * traced.diagonal;
+}
+
+}  // namespace lueur

@@ -1,0 +1,52 @@
+// L2: one-bounce indirect light with the report's screen-space reuse of L1, and AO, its cheap stand-in.
+// Depends on the traced scene, the camera and the direct-light estimator.
+#pragma once
+
+#include "core/rng.h"
+#include "render/camera.h"
+#include "render/settings.h"
+#include "render/traced_scene.h"
+
+#include <vector>
+
+namespace lueur {
+
+/// What the primary rays of the current frame saw: the screen that L2 reuses.
+struct ScreenBuffer {
+  int width = 0, height = 0;
+  std::vector<uint32_t> triangle;  ///< kNoHit where the pixel sees nothing
+  std::vector<Vec3> position;
+  std::vector<Vec3> l1;            ///< this frame's L1 toward the camera (diffuse part only with reuse_diffuse_only)
+  std::vector<Vec3> l1_average;    ///< running L1 average including this frame (reuse = average only)
+  void resize(int w, int h);
+};
+
+struct IndirectResult {
+  Vec3 l2{0.0f};
+  Vec3 from_reused{0.0f};      ///< the part of l2 whose L1(q) came from the screen (report figure 7)
+  Vec3 from_recomputed{0.0f};  ///< the part whose L1(q) was traced anew (report figure 8)
+  int bounce_hits = 0;         ///< bounce rays that hit a surface
+  int reused = 0;              ///< of those, how many took L1 from the screen
+};
+
+/// The screen pixel whose primary ray hit q, or -1: q projects into it, its primary ray hit q's triangle, and its
+/// hit lies within 1.5 pixel footprints of q, measured on the triangle's plane (`q_normal` is its unit normal).
+int find_reusable_pixel(const Camera& camera, const ScreenBuffer& screen, uint32_t triangle, const Vec3& q,
+                        const Vec3& q_normal);
+
+/// L2 at `sp` with settings.l2_rays cosine-weighted rays (Dutré formula 35). Where a ray hits q, L1(q) toward p is
+/// taken from the pixel q projects to when that pixel's primary ray hit q (find_reusable_pixel), otherwise recomputed with settings.recompute_rays() shadow rays. Emission at q is not added: it is
+/// already L1 at p.
+IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& camera, const ScreenBuffer& screen,
+                                       const SurfacePoint& sp, const RenderSettings& settings, Pcg32& bounce_rng,
+                                       Pcg32& recompute_rng, uint64_t& rays_traced);
+
+/// Ambient occlusion: Kd times the fraction of settings.ao_rays cosine rays that travel farther than `radius`,
+/// the light of a uniform white sky that nearby geometry blocks.
+Vec3 estimate_ambient_occlusion(const TracedScene& traced, const SurfacePoint& sp, int rays, float radius, Pcg32& rng,
+                                uint64_t& rays_traced);
+
+/// The AO radius in world units for these settings (a tenth of the scene diagonal by default).
+float ambient_occlusion_radius(const TracedScene& traced, const RenderSettings& settings);
+
+}  // namespace lueur

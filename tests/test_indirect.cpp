@@ -1,0 +1,270 @@
+// L2 and AO against closed forms, the reuse modes against each other, where reuse happens, and anti-aliasing.
+#include "render/indirect_light.h"
+#include "render/renderer.h"
+#include "scene/default_scene.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+namespace lueur {
+namespace {
+
+/// Renders `frames` frames and returns, per pixel, the mean and standard error of one layer's red channel over
+/// the frames (each frame's value is the difference of the sums before and after it).
+struct PixelStats {
+  std::vector<double> mean, standard_error;
+};
+PixelStats render_layer_stats(const TracedScene& traced, const CameraSpec& view, const RenderSettings& settings,
+                              Layer layer, int frames, int channel = 0) {
+  Film film;
+  film.reset(settings);
+  ThreadPool pool(2);
+  const Camera camera = make_camera(view, settings.width, settings.height);
+  const size_t n = film.pixel_count();
+  std::vector<double> sum(n, 0.0), sum2(n, 0.0);
+  std::vector<float> before(film.sums[static_cast<size_t>(layer)]);
+  for (int f = 0; f < frames; ++f) {
+    render_frame(traced, camera, settings, film, pool);
+    const auto& after = film.sums[static_cast<size_t>(layer)];
+    for (size_t i = 0; i < n; ++i) {
+      const double x = static_cast<double>(after[3 * i + static_cast<size_t>(channel)]) -
+                       static_cast<double>(before[3 * i + static_cast<size_t>(channel)]);
+      sum[i] += x;
+      sum2[i] += x * x;
+    }
+    before = after;
+  }
+  PixelStats stats;
+  for (size_t i = 0; i < n; ++i) {
+    const double mean = sum[i] / frames;
+    stats.mean.push_back(mean);
+    stats.standard_error.push_back(std::sqrt(std::max(0.0, sum2[i] / frames - mean * mean) / (frames - 1)));
+  }
+  return stats;
+}
+
+class ClosedBoxL2 : public ::testing::TestWithParam<ReuseMode> {};
+
+TEST_P(ClosedBoxL2, IsRhoSquaredLeAtEveryPixel) {
+  // A closed sphere rather than a box: in a box, points near an edge see the adjacent wall at d -> 0 and the
+  // estimators' variance is unbounded, so no finite-sample tolerance is trustworthy. The closed form is the same
+  // for any closed enclosure.
+  const float rho = 0.6f, le = 2.0f;
+  const auto traced = prepare_scene(test::make_closed_emitting_sphere(1.0f, 32, 16, Vec3(rho), Vec3(le)));
+  for (uint32_t t = 0; t < traced->scene.triangles.size(); ++t)
+    ASSERT_LT(glm::dot(traced->scene.geometric_normal_raw(t), traced->scene.point(t, 0.3f, 0.3f)), 0.0f);
+  RenderSettings settings;
+  settings.width = settings.height = 12;
+  settings.enabled = {false, false, true, false};
+  settings.reuse = GetParam();
+  settings.blinn_k = 1.0f;
+  settings.l1_rays = 8;
+  settings.l2_rays = 8;
+  const CameraSpec view{Vec3(0.1f, 0.2f, 0.0f), Vec3(-1, -0.5f, -0.3f), Vec3(0, 1, 0), 90.0f};
+  const PixelStats stats = render_layer_stats(*traced, view, settings, Layer::kL2, 200);
+  const double expected = rho * rho * le;
+  for (size_t i = 0; i < stats.mean.size(); ++i)
+    EXPECT_NEAR(stats.mean[i], expected, 5.0 * stats.standard_error[i] + 1e-4) << "pixel " << i;
+  // And the closed box's image mean (edges included) within 2%.
+  const auto box = prepare_scene(test::make_closed_emitting_box(1.0f, Vec3(rho), Vec3(le)));
+  const PixelStats box_stats = render_layer_stats(*box, view, settings, Layer::kL2, 100);
+  double mean = 0.0;
+  for (const double m : box_stats.mean) mean += m;
+  EXPECT_NEAR(mean / static_cast<double>(box_stats.mean.size()), expected, 0.02 * expected);
+}
+
+INSTANTIATE_TEST_SUITE_P(Reuse, ClosedBoxL2, ::testing::Values(ReuseMode::kOff, ReuseMode::kFrame, ReuseMode::kAverage),
+                         [](const auto& param_info) {
+                           return std::string(kReuseModeNames[static_cast<size_t>(param_info.param)]);
+                         });
+
+TEST(AmbientOcclusion, IsAlbedoWithNothingWithinTheRadius) {
+  const auto traced = prepare_scene(test::make_rect_light_over_floor(0.2f, 0.2f, 5.0f, Vec3(0.3f, 0.5f, 0.7f), Vec3(1.0f)));
+  Ray ray;
+  ray.origin = Vec3(2.0f, 1.0f, 0.0f);
+  ray.dir = Vec3(0.0f, -1.0f, 0.0f);
+  const SurfacePoint sp = make_surface_point(traced->scene, ray, intersect_closest(traced->bvh, ray));
+  Pcg32 rng(1, 2);
+  uint64_t rays = 0;
+  const Vec3 ao = estimate_ambient_occlusion(*traced, sp, 4096, 4.0f, rng, rays);
+  EXPECT_EQ(ao, Vec3(0.3f, 0.5f, 0.7f));
+  EXPECT_EQ(rays, 4096u);
+}
+
+TEST(AmbientOcclusion, UnderACeilingIsAlbedoTimesHOverRSquared) {
+  // A ray at angle theta reaches the ceiling at distance H / cos(theta); it travels farther than R when
+  // cos(theta) < H / R, a cosine-weighted fraction of (H / R)^2.
+  const float height = 1.0f, radius = 2.0f, kd = 0.8f;
+  const auto traced = prepare_scene(test::make_rect_light_over_floor(400.0f, 400.0f, height, Vec3(kd), Vec3(1.0f)));
+  Ray ray;
+  ray.origin = Vec3(0.0f, 0.5f, 0.0f);
+  ray.dir = Vec3(0.0f, -1.0f, 0.0f);
+  const SurfacePoint sp = make_surface_point(traced->scene, ray, intersect_closest(traced->bvh, ray));
+  Pcg32 rng(3, 4);
+  uint64_t rays = 0;
+  constexpr int kRays = 200000;
+  const float ao = estimate_ambient_occlusion(*traced, sp, kRays, radius, rng, rays).r;
+  const double p = (height / radius) * (height / radius);
+  EXPECT_NEAR(ao, kd * p, 5.0 * kd * std::sqrt(p * (1 - p) / kRays));
+}
+
+std::shared_ptr<const TracedScene> default_traced() {
+  Scene scene = make_default_scene();
+  compute_smooth_normals(scene);
+  return prepare_scene(std::move(scene));
+}
+
+CameraSpec default_view() {
+  const DefaultView v;
+  return {v.eye, v.target, v.up, v.fovy_degrees};
+}
+
+TEST(ReuseModes, AgreeWithinNoiseOnDiffuseSurfaces) {
+  const auto traced = default_traced();
+  RenderSettings settings;
+  // Reuse takes L1 from a point up to a pixel away, so its (spatial) bias shrinks with the pixel size: compare at
+  // a resolution where a pixel is a few millimetres.
+  constexpr int kSize = 96, kBlock = 24;
+  settings.width = settings.height = kSize;
+  settings.enabled = {false, false, true, false};
+  settings.blinn_k = 1.0f;  // Lambertian walls: reusing their L1 toward another direction is exact
+  settings.l1_rays = 4;
+  settings.l2_rays = 8;
+  std::vector<PixelStats> results;
+  for (const ReuseMode mode : {ReuseMode::kOff, ReuseMode::kFrame, ReuseMode::kAverage}) {
+    settings.reuse = mode;
+    results.push_back(render_layer_stats(*traced, default_view(), settings, Layer::kL2, 24, 1));
+  }
+  // Compare blocks of pixels on Lambertian surfaces (not the apple, whose Ks makes L1 view-dependent).
+  const Camera camera = make_camera(default_view(), kSize, kSize);
+  for (int by = 0; by < 4; ++by)
+    for (int bx = 0; bx < 4; ++bx) {
+      std::array<double, 3> mean{}, variance{};
+      int pixels = 0;
+      for (int y = by * kBlock; y < (by + 1) * kBlock; ++y)
+        for (int x = bx * kBlock; x < (bx + 1) * kBlock; ++x) {
+          const Hit hit = intersect_closest(traced->bvh, camera_ray(camera, x + 0.5f, y + 0.5f));
+          if (!hit.found() || traced->scene.material_of(hit.triangle).has_specular()) continue;
+          const size_t i = static_cast<size_t>(y * kSize + x);
+          for (size_t m = 0; m < 3; ++m) {
+            mean[m] += results[m].mean[i];
+            variance[m] += results[m].standard_error[i] * results[m].standard_error[i];
+          }
+          ++pixels;
+        }
+      if (pixels < 16) continue;
+      for (size_t m = 1; m < 3; ++m) {
+        const double tolerance = 5.0 * std::sqrt(variance[0] + variance[m]) / pixels + 1e-4;
+        EXPECT_NEAR(mean[m] / pixels, mean[0] / pixels, tolerance) << "block " << bx << "," << by << " mode " << m;
+      }
+    }
+}
+
+TEST(ReuseModes, ReuseHappensWhereTheCameraSeesQAndNeverBehindTheBlocks) {
+  const auto traced = default_traced();
+  const int w = 128, h = 128;
+  const Camera camera = make_camera(default_view(), w, h);
+  ScreenBuffer screen;
+  screen.resize(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const Ray ray = camera_ray(camera, x + 0.5f, y + 0.5f);
+      const Hit hit = intersect_closest(traced->bvh, ray);
+      if (!hit.found()) continue;
+      const size_t i = static_cast<size_t>(y * w + x);
+      screen.triangle[i] = hit.triangle;
+      screen.position[i] = traced->scene.point(hit.triangle, hit.u, hit.v);
+    }
+  // Random points, uniform by area over the scene: those the camera sees directly are reused almost always (misses
+  // only where a pixel straddles two triangles); those it cannot see (behind the blocks, their back faces) are
+  // reused only where they lie within a pixel of a silhouette.
+  std::vector<double> cdf;
+  double total = 0.0;
+  for (uint32_t t = 0; t < traced->scene.triangles.size(); ++t) cdf.push_back(total += traced->scene.area(t));
+  Pcg32 rng(8, 8);
+  int visible = 0, visible_reused = 0, hidden = 0, hidden_reused = 0;
+  for (int s = 0; s < 40000; ++s) {
+    const auto tri = static_cast<uint32_t>(std::upper_bound(cdf.begin(), cdf.end(), rng.next_float() * total) - cdf.begin());
+    const float r1 = std::sqrt(rng.next_float()), r2 = rng.next_float();
+    const Vec3 q = traced->scene.point(tri, r1 * (1 - r2), r1 * r2);
+    Ray to_q;
+    to_q.origin = camera.eye;
+    to_q.dir = q - camera.eye;
+    to_q.tmax = 1.0f + 1e-3f;
+    const Hit first = intersect_closest(traced->bvh, to_q);
+    float px = 0, py = 0;
+    if (!project_to_pixel(camera, q, px, py)) continue;
+    const bool seen = first.found() && first.triangle == tri && first.t > 0.999f;
+    const Vec3 normal = glm::normalize(traced->scene.geometric_normal_raw(tri));
+    const bool reused = find_reusable_pixel(camera, screen, tri, q, normal) >= 0;
+    if (seen) {
+      ++visible;
+      visible_reused += reused;
+    } else if (!first.found() || first.t < 0.99f) {
+      ++hidden;
+      hidden_reused += reused;
+    }
+  }
+  ASSERT_GT(visible, 1000);
+  ASSERT_GT(hidden, 1000);
+  EXPECT_GT(static_cast<double>(visible_reused) / visible, 0.95);
+  EXPECT_LT(static_cast<double>(hidden_reused) / hidden, 0.01);
+}
+
+TEST(ReuseModes, ReuseFractionLayerIsHighOnTheDefaultView) {
+  const auto traced = default_traced();
+  RenderSettings settings;
+  settings.width = settings.height = 32;
+  settings.l1_rays = 2;
+  settings.l2_rays = 8;
+  Film film;
+  film.reset(settings);
+  ThreadPool pool(2);
+  const FrameResult r = render_frame(*traced, make_camera(default_view(), 32, 32), settings, film, pool);
+  ASSERT_GT(r.l2_bounce_hits, 0u);
+  const double fraction = static_cast<double>(r.l2_reused) / static_cast<double>(r.l2_bounce_hits);
+  EXPECT_GT(fraction, 0.5);
+  EXPECT_LT(fraction, 1.0);  // some bounce rays reach surfaces the camera does not see
+  const Image layer = layer_average(film, Layer::kReuseFraction);
+  double mean = 0.0;
+  for (const float v : layer.rgb) mean += v;
+  EXPECT_NEAR(mean / static_cast<double>(layer.rgb.size()), fraction, 0.15);
+  // The two explanatory layers add up to L2.
+  const Image l2 = layer_average(film, Layer::kL2), reused = layer_average(film, Layer::kL2Reused),
+              recomputed = layer_average(film, Layer::kL2Recomputed);
+  for (size_t i = 0; i < l2.rgb.size(); ++i) EXPECT_NEAR(l2.rgb[i], reused.rgb[i] + recomputed.rgb[i], 1e-5f);
+}
+
+TEST(AntiAliasing, JitteredFramesConvergeToTheMeanOfBothSidesOfAnEdge) {
+  // An emitting half-plane x < 0 facing the camera at z = -1; the camera at the origin looks down -z. With an odd
+  // image width the edge x = 0 cuts the middle pixel in half.
+  Scene scene;
+  Material light;
+  light.ke = Vec3(1.0f);
+  scene.materials = {light};
+  scene.positions = {Vec3(-100, -100, -1), Vec3(0, -100, -1), Vec3(0, 100, -1), Vec3(-100, 100, -1)};
+  Triangle t1, t2;
+  t1.v[0] = 0, t1.v[1] = 1, t1.v[2] = 2;
+  t2.v[0] = 0, t2.v[1] = 2, t2.v[2] = 3;
+  scene.triangles = {t1, t2};
+  collect_emitters(scene);
+  const auto traced = prepare_scene(std::move(scene));
+  RenderSettings settings;
+  settings.width = 9;
+  settings.height = 1;
+  settings.enabled = {true, false, false, false};
+  Film film;
+  film.reset(settings);
+  ThreadPool pool(1);
+  // Camera right is -x here? Use a view whose right vector is +x: looking down -z with up +y.
+  const Camera camera = make_camera({Vec3(0.0f), Vec3(0, 0, -1), Vec3(0, 1, 0), 10.0f}, 9, 1);
+  constexpr int kFrames = 4096;
+  for (int f = 0; f < kFrames; ++f) render_frame(*traced, camera, settings, film, pool);
+  const Image le = layer_average(film, Layer::kLe);
+  EXPECT_FLOAT_EQ(le.at(0, 0).r, 1.0f);  // fully on the emitter
+  EXPECT_FLOAT_EQ(le.at(8, 0).r, 0.0f);  // fully off it
+  EXPECT_NEAR(le.at(4, 0).r, 0.5f, 4.0f * std::sqrt(0.25f / kFrames));
+}
+
+}  // namespace
+}  // namespace lueur
