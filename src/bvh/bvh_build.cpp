@@ -1,0 +1,223 @@
+// Builds Lueur's BVH: a binned-SAH BVH2 of 32-byte nodes over triangles, then lays the triangles out in leaf order.
+// Depends on core (math, ray, box) only; must not know about scenes, materials or rendering.
+
+#include "bvh/bvh.h"
+
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+
+namespace lueur {
+namespace {
+
+// 32 bins keep the split quality close to a full sweep while a node costs one pass over its triangles.
+constexpr int kBinCount = 32;
+// Relative costs of visiting an inner node (two box tests) and of one triangle test, in the SAH.
+constexpr float kTraversalCost = 1.0f;
+constexpr float kIntersectionCost = 1.0f;
+// Below this depth nodes are split by object median only. Median splits at least halve the count, so leaves are
+// reached within 32 more levels even for 2^32 triangles, which keeps every node shallower than kBvhMaxDepth.
+constexpr uint32_t kSahDepthLimit = kBvhMaxDepth - 32;
+static_assert(kBvhMaxLeafSize >= 1);
+
+/// A triangle during the build: its box, the centre of that box (the binned position) and its index in `prepared`.
+struct PrimRef {
+  Box3 box;
+  Vec3 centroid;
+  uint32_t index;
+};
+
+struct Bin {
+  Box3 box;
+  uint32_t count = 0;
+};
+
+struct Split {
+  int axis = -1;  ///< -1: no usable split
+  int bin = 0;    ///< first bin of the right side
+  float cost = kInfinity;
+};
+
+/// A node whose box and children are still to be decided, covering prims[begin, end).
+struct BuildTask {
+  uint32_t node, begin, end, depth;
+};
+
+/// Bin of a centroid coordinate. Written so that no input (NaN, infinite offsets) reaches an undefined float-to-int
+/// conversion, and used by both the binning and the partition so the two always agree.
+int bin_of(float c, float lo, float scale) {
+  const float f = (c - lo) * scale;
+  if (!(f < static_cast<float>(kBinCount - 1))) return kBinCount - 1;
+  return f > 0.0f ? static_cast<int>(f) : 0;
+}
+
+/// Best binned-SAH split of prims[begin, end) over all three axes; cost is sum(area * count) of the two sides.
+Split find_sah_split(const std::vector<PrimRef>& prims, uint32_t begin, uint32_t end, const Box3& centroids) {
+  std::array<std::array<Bin, kBinCount>, 3> bins{};
+  std::array<float, 3> scale{};
+  std::array<bool, 3> usable{};
+  for (int axis = 0; axis < 3; ++axis) {
+    const float extent = centroids.hi[axis] - centroids.lo[axis];
+    scale[axis] = static_cast<float>(kBinCount) / extent;
+    // All centroids on one plane, or an extent so small (or large) that binning would be meaningless.
+    usable[axis] = extent > 0.0f && std::isfinite(scale[axis]) && scale[axis] > 0.0f;
+  }
+  for (uint32_t i = begin; i < end; ++i) {
+    const PrimRef& p = prims[i];
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!usable[axis]) continue;
+      Bin& bin = bins[axis][bin_of(p.centroid[axis], centroids.lo[axis], scale[axis])];
+      bin.box.expand(p.box);
+      ++bin.count;
+    }
+  }
+
+  Split best;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!usable[axis]) continue;
+    // right_cost[k]: area * count of bins k..end, the right side of a split before bin k.
+    std::array<float, kBinCount> right_cost{};
+    std::array<uint32_t, kBinCount> right_count{};
+    Box3 right;
+    uint32_t count = 0;
+    for (int k = kBinCount - 1; k > 0; --k) {
+      right.expand(bins[axis][k].box);
+      count += bins[axis][k].count;
+      right_cost[k] = right.area() * static_cast<float>(count);
+      right_count[k] = count;
+    }
+    Box3 left;
+    count = 0;
+    for (int k = 1; k < kBinCount; ++k) {
+      left.expand(bins[axis][k - 1].box);
+      count += bins[axis][k - 1].count;
+      if (count == 0 || right_count[k] == 0) continue;
+      const float cost = left.area() * static_cast<float>(count) + right_cost[k];
+      if (cost < best.cost) best = Split{axis, k, cost};  // NaN or infinite costs (overflowing boxes) never win
+    }
+  }
+  return best;
+}
+
+/// Splits prims[begin, end) at the median centroid along the widest centroid axis; both halves are non-empty.
+uint32_t median_split(std::vector<PrimRef>& prims, uint32_t begin, uint32_t end, const Box3& centroids) {
+  const Vec3 extent = centroids.extent();
+  int axis = 0;
+  if (extent.y > extent[axis]) axis = 1;
+  if (extent.z > extent[axis]) axis = 2;
+  const uint32_t mid = begin + (end - begin) / 2;
+  std::nth_element(prims.begin() + begin, prims.begin() + mid, prims.begin() + end,
+                   [axis](const PrimRef& a, const PrimRef& b) { return a.centroid[axis] < b.centroid[axis]; });
+  return mid;
+}
+
+}  // namespace
+
+BvhTriangle make_bvh_triangle(const Vec3& a, const Vec3& b, const Vec3& c, uint32_t id) {
+  BvhTriangle tri{a, b - a, c - a, id};
+  if (glm::cross(tri.e1, tri.e2) == Vec3(0.0f)) {
+    tri.e1 = Vec3(0.0f);
+    tri.e2 = Vec3(0.0f);
+  }
+  return tri;
+}
+
+Bvh build_bvh(const std::vector<Vec3>& corners) {
+  Bvh bvh;
+  const size_t input_count = corners.size() / 3;
+  if (input_count >= kNoHit) throw std::length_error("build_bvh: too many triangles for 32-bit indices");
+
+  std::vector<BvhTriangle> prepared;  // in input order, only the kept ones
+  std::vector<PrimRef> prims;
+  prepared.reserve(input_count);
+  prims.reserve(input_count);
+  for (size_t i = 0; i < input_count; ++i) {
+    const Vec3& a = corners[3 * i];
+    const Vec3& b = corners[3 * i + 1];
+    const Vec3& c = corners[3 * i + 2];
+    if (!is_finite(a) || !is_finite(b) || !is_finite(c)) continue;
+    const BvhTriangle tri = make_bvh_triangle(a, b, c, static_cast<uint32_t>(i));
+    // Edges that overflow could never be hit (non-finite determinant) and would give infinite boxes.
+    if (!is_finite(tri.e1) || !is_finite(tri.e2)) continue;
+    PrimRef p;
+    // Hits are clamped into bvh_triangle_box, so node boxes must contain it exactly; the input vertices too, which
+    // a zero-area triangle's box (a point at v0) does not.
+    p.box = bvh_triangle_box(tri);
+    p.box.expand(a);
+    p.box.expand(b);
+    p.box.expand(c);
+    // Halving before adding cannot overflow, unlike (lo + hi) / 2 near the float range limits.
+    p.centroid = 0.5f * p.box.lo + 0.5f * p.box.hi;
+    p.index = static_cast<uint32_t>(prepared.size());
+    prepared.push_back(tri);
+    prims.push_back(p);
+  }
+  if (prims.empty()) return bvh;
+
+  const auto prim_count = static_cast<uint32_t>(prims.size());
+  bvh.nodes.reserve(2 * static_cast<size_t>(prim_count) - 1);
+  bvh.nodes.push_back(BvhNode{});
+  std::vector<BuildTask> tasks;
+  tasks.push_back({0, 0, prim_count, 0});
+
+  while (!tasks.empty()) {
+    const BuildTask task = tasks.back();
+    tasks.pop_back();
+
+    Box3 box, centroids;
+    for (uint32_t i = task.begin; i < task.end; ++i) {
+      box.expand(prims[i].box);
+      centroids.expand(prims[i].centroid);
+    }
+    const uint32_t count = task.end - task.begin;
+
+    bool split = false;
+    uint32_t mid = 0;
+    if (count > 1) {
+      if (task.depth < kSahDepthLimit) {
+        const Split s = find_sah_split(prims, task.begin, task.end, centroids);
+        const float area = box.area();
+        const float leaf_cost = kIntersectionCost * static_cast<float>(count) * area;
+        const float split_cost = kTraversalCost * area + kIntersectionCost * s.cost;
+        if (s.axis >= 0 && (count > kBvhMaxLeafSize || split_cost < leaf_cost)) {
+          const int axis = s.axis;
+          const float lo = centroids.lo[axis];
+          const float scale = static_cast<float>(kBinCount) / (centroids.hi[axis] - lo);
+          const auto it = std::partition(prims.begin() + task.begin, prims.begin() + task.end,
+                                         [&](const PrimRef& p) { return bin_of(p.centroid[axis], lo, scale) < s.bin; });
+          mid = static_cast<uint32_t>(it - prims.begin());
+          // The bin counts promise two non-empty sides; should rounding ever disagree, fall back to the median.
+          split = mid != task.begin && mid != task.end;
+        }
+      }
+      // All centroids coincide, no SAH split is finite, or the depth budget for SAH is spent.
+      if (!split && count > kBvhMaxLeafSize) {
+        mid = median_split(prims, task.begin, task.end, centroids);
+        split = true;
+      }
+    }
+
+    BvhNode& node = bvh.nodes[task.node];
+    node.lo = box.lo;
+    node.hi = box.hi;
+    if (!split) {
+      node.first = task.begin;
+      node.count = count;
+      continue;
+    }
+    const auto left = static_cast<uint32_t>(bvh.nodes.size());
+    node.first = left;
+    node.count = 0;
+    bvh.nodes.push_back(BvhNode{});  // may invalidate `node`, which is not used past this point
+    bvh.nodes.push_back(BvhNode{});
+    // Left last so it is built next: a node's subtree then tends to sit close to it in memory.
+    tasks.push_back({left + 1, mid, task.end, task.depth + 1});
+    tasks.push_back({left, task.begin, mid, task.depth + 1});
+  }
+
+  bvh.triangles.reserve(prims.size());
+  for (const PrimRef& p : prims) bvh.triangles.push_back(prepared[p.index]);
+  return bvh;
+}
+
+}  // namespace lueur
