@@ -266,11 +266,13 @@ uint32_t check_invariants(const Bvh& bvh, const Corners& corners) {
     if (node_visits[n] != 1) fail("node " + std::to_string(n) + " is unreachable");
   }
   for (size_t s = 0; s < slot_visits.size(); ++s) {
-    if (slot_visits[s] != 1) fail("triangle slot " + std::to_string(s) + " is in " + std::to_string(slot_visits[s]) + " leaves");
+    if (slot_visits[s] != 1)
+      fail("triangle slot " + std::to_string(s) + " is in " + std::to_string(slot_visits[s]) + " leaves");
   }
   for (size_t i = 0; i < id_visits.size(); ++i) {
     const int expected = triangle_finite(corners, i) ? 1 : 0;
-    if (id_visits[i] != expected) fail("input triangle " + std::to_string(i) + " appears " + std::to_string(id_visits[i]) + " times");
+    if (id_visits[i] != expected)
+      fail("input triangle " + std::to_string(i) + " appears " + std::to_string(id_visits[i]) + " times");
   }
   EXPECT_EQ(failures, 0u);
   return max_depth;
@@ -304,7 +306,8 @@ Corners make_soup(std::mt19937& rng, size_t count) {
 Corners make_grid(int n, bool flat) {
   const float h = 0.25f;
   auto vertex = [&](int i, int j) {
-    const float z = flat ? 0.0f : 0.7f * std::sin(0.31f * static_cast<float>(i)) * std::cos(0.23f * static_cast<float>(j));
+    const float z =
+        flat ? 0.0f : 0.7f * std::sin(0.31f * static_cast<float>(i)) * std::cos(0.23f * static_cast<float>(j));
     return Vec3(h * static_cast<float>(i), h * static_cast<float>(j), z);
   };
   Corners corners;
@@ -323,7 +326,8 @@ Corners make_slivers(std::mt19937& rng) {
   auto point = [&] { return uniform_in(rng, Vec3(-4.0f), Vec3(4.0f)); };
   for (int i = 0; i < 300; ++i) {
     const Vec3 a = point();
-    add_triangle(corners, a, a + uniform_in(rng, Vec3(-1.0f), Vec3(1.0f)), a + uniform_in(rng, Vec3(-1.0f), Vec3(1.0f)));
+    add_triangle(corners, a, a + uniform_in(rng, Vec3(-1.0f), Vec3(1.0f)),
+                 a + uniform_in(rng, Vec3(-1.0f), Vec3(1.0f)));
   }
   for (int i = 0; i < 300; ++i) {  // almost collinear: the third vertex a hair off the edge
     const Vec3 a = point(), b = point();
@@ -530,9 +534,8 @@ void run_scene(const SceneCase& scene, uint32_t seed) {
   const Bvh bvh = build_bvh(scene.corners);
   const uint32_t depth = check_invariants(bvh, scene.corners);
   const RayStats stats = compare_with_brute_force(scene.corners, bvh, scene.rays, seed);
-  std::cout << "[ scene    ] " << scene.name << ": " << scene.corners.size() / 3 << " triangles, "
-            << bvh.nodes.size() << " nodes, depth " << depth << ", " << stats.rays << " rays, " << stats.hits
-            << " hits\n";
+  std::cout << "[ scene    ] " << scene.name << ": " << scene.corners.size() / 3 << " triangles, " << bvh.nodes.size()
+            << " nodes, depth " << depth << ", " << stats.rays << " rays, " << stats.hits << " hits\n";
   // Both outcomes must be well represented, or the comparison proves little.
   EXPECT_GT(stats.hits, stats.rays / 10) << scene.name;
   EXPECT_LT(stats.hits, stats.rays - stats.rays / 20) << scene.name;
@@ -573,7 +576,8 @@ TEST(BvhVersusBruteForce, SliversAndDegenerates) {
 
 TEST(BvhVersusBruteForce, ThousandCopiesOfOneTriangle) {
   Corners corners;
-  for (int i = 0; i < 1000; ++i) add_triangle(corners, Vec3(-1.0f, -1.0f, 0.0f), Vec3(1.0f, -1.0f, 0.2f), Vec3(0.0f, 1.0f, -0.3f));
+  for (int i = 0; i < 1000; ++i)
+    add_triangle(corners, Vec3(-1.0f, -1.0f, 0.0f), Vec3(1.0f, -1.0f, 0.2f), Vec3(0.0f, 1.0f, -0.3f));
   run_scene({"copies", corners, kCopiesRays}, 105);
   const Bvh bvh = build_bvh(corners);
   std::mt19937 rng(6);
@@ -587,7 +591,6 @@ TEST(BvhVersusBruteForce, ThousandCopiesOfOneTriangle) {
 }
 
 TEST(BvhVersusBruteForce, ClosedSphere) { run_scene({"sphere", make_sphere(40, 80, 3.0f), kSphereRays}, 106); }
-
 
 }  // namespace
 }  // namespace lueur

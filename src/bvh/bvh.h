@@ -60,7 +60,6 @@ bool intersect_any(const Bvh& bvh, const Ray& ray);
 /// ray inside bvh_triangle_box (no span: no hit). Near-degenerate triangles and grazing rays can give a Möller–
 /// Trumbore t far from the triangle; the clamp keeps every hit inside the node boxes above it, so the BVH queries
 /// report exactly what a loop over all triangles with this function reports, bit for bit.
-bool intersect_triangle(const Ray& ray, const Vec3& v0, const Vec3& e1, const Vec3& e2, float& t, float& u,
-                        float& v);
+bool intersect_triangle(const Ray& ray, const Vec3& v0, const Vec3& e1, const Vec3& e2, float& t, float& u, float& v);
 
 }  // namespace lueur

@@ -15,7 +15,7 @@ constexpr int kBinCount = 32;
 // Relative costs of visiting an inner node (two box tests) and of one triangle test, in the SAH.
 constexpr float kTraversalCost = 1.0f;
 constexpr float kIntersectionCost = 1.0f;
-// Below this depth nodes are split by object median only. Median splits at least halve the count, so leaves are
+// From this depth on nodes are split by object median only. Median splits halve the count, so leaves are
 // reached within 32 more levels even for 2^32 triangles, which keeps every node shallower than kBvhMaxDepth.
 constexpr uint32_t kSahDepthLimit = kBvhMaxDepth - 32;
 static_assert(kBvhMaxLeafSize >= 1);

@@ -108,8 +108,8 @@ inline bool clamp_to_triangle_box(const Vec3& origin, const Vec3& inv_dir, const
 
 /// The whole shared test; the BVH passes its precomputed inverse direction, which is bit-identical to the one
 /// intersect_triangle computes.
-inline bool triangle_hit(const Vec3& origin, const Vec3& dir, const Vec3& inv_dir, const BvhTriangle& tri,
-                         float& t, float& u, float& v) {
+inline bool triangle_hit(const Vec3& origin, const Vec3& dir, const Vec3& inv_dir, const BvhTriangle& tri, float& t,
+                         float& u, float& v) {
   return moller_trumbore(origin, dir, tri.v0, tri.e1, tri.e2, t, u, v) &&
          clamp_to_triangle_box(origin, inv_dir, tri.v0, tri.e1, tri.e2, t);
 }
@@ -118,8 +118,7 @@ inline bool triangle_hit(const Vec3& origin, const Vec3& dir, const Vec3& inv_di
 
 Box3 bvh_triangle_box(const BvhTriangle& tri) { return triangle_box(tri.v0, tri.e1, tri.e2); }
 
-bool intersect_triangle(const Ray& ray, const Vec3& v0, const Vec3& e1, const Vec3& e2, float& t, float& u,
-                        float& v) {
+bool intersect_triangle(const Ray& ray, const Vec3& v0, const Vec3& e1, const Vec3& e2, float& t, float& u, float& v) {
   float tt, uu, vv;
   if (!moller_trumbore(ray.origin, ray.dir, v0, e1, e2, tt, uu, vv)) return false;
   // The inverse only after a candidate hit: the brute-force loop then costs little more than Möller–Trumbore.
