@@ -12,6 +12,7 @@ struct CameraSpec {
   Vec3 target{0.0f};
   Vec3 up{0.0f, 1.0f, 0.0f};
   float fovy_degrees = 45.0f;
+  bool operator==(const CameraSpec&) const = default;
 };
 
 /// A camera looking at the bounding box from its +z side, far enough that the whole box fits the view.

@@ -64,6 +64,7 @@ struct RenderSettings {
   float ao_radius = 0.0f;  ///< world units; 0 or less: a tenth of the scene's bounding-box diagonal
   uint64_t seed = 0;
 
+  bool operator==(const RenderSettings&) const = default;
   bool pass_enabled(Pass p) const { return enabled[static_cast<size_t>(p)]; }
   /// Shadow rays for a recomputed L1(q).
   int recompute_rays() const {
