@@ -13,3 +13,22 @@ add_library(lueur::tinyexr INTERFACE IMPORTED)
 target_link_libraries(lueur::tinyexr INTERFACE tinyexr::tinyexr)
 add_library(lueur::stb INTERFACE IMPORTED)
 target_link_libraries(lueur::stb INTERFACE PkgConfig::STB)
+
+# ---- display and UI (the window, off-screen screenshots, the panel) --------
+find_package(nlohmann_json 3 CONFIG REQUIRED)             # nlohmann-json3-dev
+find_package(glfw3 3.3 CONFIG REQUIRED)                   # libglfw3-dev
+find_package(OpenGL REQUIRED COMPONENTS OpenGL EGL)       # libgl-dev, libegl-dev (+ Mesa's libegl-mesa0)
+pkg_check_modules(OSMESA REQUIRED IMPORTED_TARGET osmesa) # libosmesa6-dev
+pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)   # libimgui-dev
+
+# Debian's libimgui.a has the OpenGL 3 back-end compiled with its own loader, which dlopens libGL and so fails
+# under OSMesa. Debian also ships that back-end's source: compile it here, from the system, with a custom loader
+# that takes the current context's get-proc-address (src/ui/imgui_gl_loader.cpp). Nothing is copied into the repo.
+set(LUEUR_IMGUI_BACKENDS /usr/share/doc/libimgui-dev/examples/backends)
+find_file(LUEUR_IMGUI_OPENGL3_SOURCE imgui_impl_opengl3.cpp PATHS ${LUEUR_IMGUI_BACKENDS} NO_DEFAULT_PATH REQUIRED)
+find_file(LUEUR_IMGUI_LOADER_HEADER imgui_impl_opengl3_loader.h PATH_SUFFIXES imgui/backends REQUIRED)
+add_library(lueur_imgui_opengl3 STATIC ${LUEUR_IMGUI_OPENGL3_SOURCE})
+target_compile_definitions(lueur_imgui_opengl3 PUBLIC IMGUI_IMPL_OPENGL_LOADER_CUSTOM)
+target_compile_options(lueur_imgui_opengl3 PRIVATE -include ${LUEUR_IMGUI_LOADER_HEADER} -w)
+target_include_directories(lueur_imgui_opengl3 PUBLIC ${IMGUI_INCLUDEDIR}/backends)
+target_link_libraries(lueur_imgui_opengl3 PUBLIC PkgConfig::IMGUI)

@@ -1,11 +1,11 @@
 // Command-line parsing with CLI11. Every malformed value becomes a UsageError that names the option.
-#include "app/options.h"
-
 #include <CLI/CLI.hpp>
-
+#include <cctype>
 #include <cstdio>
 #include <sstream>
 #include <vector>
+
+#include "app/options.h"
 
 namespace lueur {
 namespace {
@@ -66,8 +66,7 @@ void parse_size(const std::string& text, RenderSettings& render) {
   } catch (const std::logic_error&) {
     throw UsageError("--size: '" + text + "' is not WIDTHxHEIGHT");
   }
-  if (w < 1 || h < 1 || w > 16384 || h > 16384)
-    throw UsageError("--size: " + text + " is outside 1x1 .. 16384x16384");
+  if (w < 1 || h < 1 || w > 16384 || h > 16384) throw UsageError("--size: " + text + " is outside 1x1 .. 16384x16384");
   render.width = w;
   render.height = h;
 }
@@ -89,13 +88,49 @@ void parse_weights(const std::string& text, std::array<float, kPassCount>& weigh
   }
 }
 
+bool ends_with_png(const std::string& path) {
+  if (path.size() < 4) return false;
+  std::string ext = path.substr(path.size() - 4);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".png";
+}
+
+/// Applies a saved view, then puts back every value an option set directly: options given override the file.
+void apply_view_file(const CLI::App& app, AppOptions& o) {
+  const AppOptions given = o;
+  ViewState view;
+  try {
+    view = load_view_file(o.view_file, view_from_options(o));
+  } catch (const std::runtime_error& e) {
+    throw UsageError(std::string("--view-file: ") + e.what());
+  }
+  apply_view(view, o);
+  const auto keep = [&](const char* option, auto member) {
+    if (app.count(option) > 0) o.*member = given.*member;
+  };
+  const auto keep_render = [&](const char* option, auto member) {
+    if (app.count(option) > 0) o.render.*member = given.render.*member;
+  };
+  keep("--frames", &AppOptions::frames);
+  keep("--frame-limit", &AppOptions::frame_limit);
+  keep_render("--l1-rays", &RenderSettings::l1_rays);
+  keep_render("--blinn-k", &RenderSettings::blinn_k);
+  keep_render("--l2-rays", &RenderSettings::l2_rays);
+  keep_render("--recompute-ratio", &RenderSettings::recompute_ratio);
+  keep_render("--reuse-diffuse-only", &RenderSettings::reuse_diffuse_only);
+  keep_render("--ao-rays", &RenderSettings::ao_rays);
+  keep_render("--ao-radius", &RenderSettings::ao_radius);
+  keep_render("--seed", &RenderSettings::seed);
+  if (app.count("--exposure") > 0) o.display.exposure = given.display.exposure;
+}
+
 }  // namespace
 
 std::optional<AppOptions> parse_command_line(int argc, char** argv) {
   AppOptions o;
   CLI::App app{"Lueur: a progressive CPU ray tracer of direct (L1) and one-bounce indirect (L2) light", "lueur"};
   app.set_version_flag("--version", "lueur 0.1.0");
-  std::string size, camera, up, passes, weights, lights, smooth = "on", tonemap, reuse, view;
+  std::string size, camera, up, passes, weights, lights, smooth, tonemap, reuse, view, gl;
   app.add_option("scene", o.scene_path, "OBJ scene (default: the embedded Cornell box with an apple)");
   app.add_flag("--headless", o.headless, "render to a file instead of opening a window");
   app.add_option("--out", o.out_path, "output image: .png (tone-mapped sRGB), .pfm (linear), .exr (linear, per pass)");
@@ -106,7 +141,8 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv) {
   app.add_option("--passes", passes, "comma-separated passes: le,l1,l2,ao (default le,l1,l2)");
   app.add_option("--weights", weights, "pass weights, e.g. le=1,l1=0.6");
   app.add_option("--lights", lights, "light sampling: all|uniform|area|power (default area)");
-  app.add_option("--l1-rays", o.render.l1_rays, "shadow rays per pixel per frame (default 16)")->check(CLI::Range(0, 4096));
+  app.add_option("--l1-rays", o.render.l1_rays, "shadow rays per pixel per frame (default 16)")
+      ->check(CLI::Range(0, 4096));
   app.add_option("--blinn-k", o.render.blinn_k, "Lambert share K of the Blinn-Phong mix (default 0.7)")
       ->check(CLI::Range(0.0f, 1.0f));
   app.add_option("--l2-rays", o.render.l2_rays, "L2 bounce rays per pixel per frame (default 16)")
@@ -130,6 +166,15 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv) {
   app.add_option("--tonemap", tonemap, "none|reinhard|aces (default none)");
   app.add_option("--export-default-scene", o.export_default_scene,
                  "write the embedded default scene as OBJ + MTL to FILE.obj and exit");
+  app.add_option("--gl", gl,
+                 "headless PNG through the GL display shaders: egl|osmesa|auto (EGL, else OSMesa) or none (CPU, "
+                 "default)");
+  app.add_flag("--ui", o.ui, "draw the control panel into the headless screenshot (needs --gl)");
+  app.add_option("--view-file", o.view_file,
+                 "a view saved by the window (camera and all settings); options given as well override it");
+  app.add_option("--frame-limit", o.frame_limit, "window: stop accumulating after this many frames (0: never)");
+  app.add_option("--state-file", o.state_file, "window: keep the current view and statistics in this JSON file")
+      ->group("");  // for tests that drive the window
 
   try {
     app.parse(argc, argv);
@@ -145,6 +190,7 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv) {
     throw UsageError(message);
   }
 
+  if (!o.view_file.empty()) apply_view_file(app, o);
   if (!size.empty()) parse_size(size, o.render);
   if (!passes.empty()) parse_passes(passes, o.render);
   if (!weights.empty()) parse_weights(weights, o.weights);
@@ -156,8 +202,13 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv) {
     o.smooth_normals = true;
   else if (smooth == "off")
     o.smooth_normals = false;
-  else
+  else if (!smooth.empty())
     throw UsageError("--smooth-normals: '" + smooth + "' is not on|off");
+  if (!gl.empty()) o.gl = parse_enum<HeadlessGl>("--gl", kHeadlessGlNames, gl);
+  if (o.headless && o.gl != HeadlessGl::kNone && !o.out_path.empty() && !ends_with_png(o.out_path))
+    throw UsageError("--gl " + gl + " takes a screenshot: --out must be a .png file");
+  if (o.ui && o.gl == HeadlessGl::kNone && o.headless)
+    throw UsageError("--ui draws the panel through GL: add --gl egl|osmesa|auto");
   if (!camera.empty()) {
     const std::vector<float> v = parse_floats("--camera", camera, 7);
     CameraSpec spec;
@@ -173,7 +224,8 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv) {
     if (v[0] == 0.0f && v[1] == 0.0f && v[2] == 0.0f) throw UsageError("--up: the zero vector has no direction");
     o.up = Vec3(v[0], v[1], v[2]);
   }
-  if (o.headless && o.out_path.empty() && o.export_default_scene.empty()) throw UsageError("--headless needs --out FILE");
+  if (o.headless && o.out_path.empty() && o.export_default_scene.empty())
+    throw UsageError("--headless needs --out FILE");
   return o;
 }
 
@@ -181,8 +233,7 @@ std::string describe_options(const AppOptions& o) {
   std::ostringstream s;
   s << "lueur ";
   if (!o.scene_path.empty()) s << "'" << o.scene_path << "' ";
-  s << "--size " << o.render.width << "x"
-    << o.render.height << " --frames " << o.frames << " --passes ";
+  s << "--size " << o.render.width << "x" << o.render.height << " --frames " << o.frames << " --passes ";
   bool first = true;
   for (int p = 0; p < kPassCount; ++p)
     if (o.render.enabled[static_cast<size_t>(p)]) {
@@ -198,14 +249,13 @@ std::string describe_options(const AppOptions& o) {
     << " --ao-rays " << o.render.ao_rays;
   if (o.render.ao_radius > 0.0f) s << " --ao-radius " << o.render.ao_radius;
   if (o.view) s << " --view " << enum_name(kLayerNames, *o.view);
-  s
-    << " --blinn-k " << o.render.blinn_k << " --smooth-normals " << (o.smooth_normals ? "on" : "off") << " --seed "
+  s << " --blinn-k " << o.render.blinn_k << " --smooth-normals " << (o.smooth_normals ? "on" : "off") << " --seed "
     << o.render.seed << " --exposure " << o.display.exposure << " --tonemap "
     << enum_name(kToneMapNames, o.display.tonemap);
   if (o.camera)
     s << " --camera \"" << o.camera->eye.x << " " << o.camera->eye.y << " " << o.camera->eye.z << " "
-      << o.camera->target.x << " " << o.camera->target.y << " " << o.camera->target.z << " "
-      << o.camera->fovy_degrees << "\"";
+      << o.camera->target.x << " " << o.camera->target.y << " " << o.camera->target.z << " " << o.camera->fovy_degrees
+      << "\"";
   if (o.up) s << " --up \"" << o.up->x << " " << o.up->y << " " << o.up->z << "\"";
   return s.str();
 }

@@ -1,25 +1,25 @@
 // Headless rendering: progress on stderr while it runs, a summary at the end, the image written atomically.
 #include "app/headless.h"
 
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
 #include "app/scene_source.h"
 #include "core/atomic_file.h"
 #include "render/image_output.h"
 #include "render/renderer.h"
 #include "scene/obj_loader.h"
-
-#include <chrono>
-#include <cstdio>
-#include <filesystem>
-#include <unistd.h>
+#include "ui/headless_screenshot.h"
 
 namespace lueur {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 /// Refuses an output that could never be written before spending minutes rendering it.
 void check_output_path(const std::string& path) {
@@ -32,6 +32,48 @@ void check_output_path(const std::string& path) {
   if (dir.empty()) dir = ".";
   if (!fs::is_directory(dir, ec)) throw IoError("cannot write '" + path + "': no directory '" + dir.string() + "'");
   if (::access(dir.c_str(), W_OK) != 0) throw IoError("cannot write '" + path + "': directory is not writable");
+}
+
+struct RunFigures {
+  double seconds = 0.0;
+  uint64_t rays = 0;
+  double l2_seconds = 0.0;
+  uint64_t bounce_hits = 0, reused = 0;
+};
+
+/// The PNG through the display shaders of an off-screen EGL or OSMesa context, with the panel if asked.
+void write_gl_screenshot(const AppOptions& options, const Film& film, const TracedScene& traced,
+                         const RunFigures& figures) {
+  DisplayView view;
+  view.enabled = options.render.enabled;
+  view.weights = options.weights;
+  view.layer = options.view;
+  view.display = options.display;
+  PanelModel panel;
+  if (options.ui) {
+    panel.view = view_from_options(options);
+    panel.paused = true;
+    panel.stats.frames = film.frames;
+    panel.stats.seconds = figures.seconds;
+    panel.stats.rays = figures.rays;
+    panel.stats.l2_seconds = figures.l2_seconds;
+    panel.stats.l2_bounce_hits = figures.bounce_hits;
+    panel.stats.l2_reused = figures.reused;
+    panel.film_width = film.width;
+    panel.film_height = film.height;
+    panel.scene_name = traced.scene.name;
+    panel.triangles = traced.scene.triangles.size();
+    panel.emitters = traced.lights.size();
+  }
+  Screenshot shot;
+  try {
+    shot = render_headless_screenshot(options.gl, film, view, options.ui ? &panel : nullptr);
+  } catch (const std::runtime_error& e) {
+    throw IoError(std::string("--gl ") + std::string(enum_name(kHeadlessGlNames, options.gl)) + ": " + e.what());
+  }
+  std::fprintf(stderr, "lueur: display path: %s\n", shot.context.c_str());
+  write_file_atomically(options.out_path,
+                        encode_png_rgb8(shot.rgb, shot.width, shot.height, describe_options(options)));
 }
 
 }  // namespace
@@ -85,16 +127,21 @@ int run_headless(const AppOptions& options) {
   for (int l = 0; l < kLayerCount; ++l)
     if (film.has(static_cast<Layer>(l)))
       layers.push_back({std::string(kLayerNames[static_cast<size_t>(l)]), layer_average(film, static_cast<Layer>(l))});
-  const Image shown = options.view ? layer_average(film, *options.view)
-                                   : combine_passes(film, settings.enabled, options.weights);
-  write_image(options.out_path, shown, layers, options.display, describe_options(options));
+  if (options.gl != HeadlessGl::kNone) {
+    write_gl_screenshot(options, film, traced, {elapsed, rays, l2_seconds, bounce_hits, reused});
+  } else {
+    const Image shown =
+        options.view ? layer_average(film, *options.view) : combine_passes(film, settings.enabled, options.weights);
+    write_image(options.out_path, shown, layers, options.display, describe_options(options));
+  }
 
   std::fprintf(stderr, "lueur: %d frames in %.2f s, %.1f M rays traced (%.2f Mrays/s)\n", options.frames, elapsed,
                static_cast<double>(rays) * 1e-6, elapsed > 0.0 ? static_cast<double>(rays) * 1e-6 / elapsed : 0.0);
   if (settings.pass_enabled(Pass::kL2))
-    std::fprintf(stderr, "lueur: L2 took %.2f s; %.1f%% of its %.1f M bounce hits reused L1 (--reuse %s)\n",
-                 l2_seconds, bounce_hits ? 100.0 * static_cast<double>(reused) / static_cast<double>(bounce_hits) : 0.0,
-                 static_cast<double>(bounce_hits) * 1e-6, std::string(enum_name(kReuseModeNames, settings.reuse)).c_str());
+    std::fprintf(stderr, "lueur: L2 took %.2f s; %.1f%% of its %.1f M bounce hits reused L1 (--reuse %s)\n", l2_seconds,
+                 bounce_hits ? 100.0 * static_cast<double>(reused) / static_cast<double>(bounce_hits) : 0.0,
+                 static_cast<double>(bounce_hits) * 1e-6,
+                 std::string(enum_name(kReuseModeNames, settings.reuse)).c_str());
   std::printf("%s\n", options.out_path.c_str());
   return 0;
 }

@@ -1,15 +1,15 @@
 // lueur: the entry point. Parses the command line and runs the headless renderer; every error becomes one line on
 // stderr and exit status 2.
+#include <cstdio>
+#include <exception>
+#include <new>
+
 #include "app/headless.h"
 #include "app/options.h"
 #include "core/atomic_file.h"
 #include "scene/default_scene.h"
 #include "scene/obj_loader.h"
 #include "scene/obj_writer.h"
-
-#include <cstdio>
-#include <exception>
-#include <new>
 
 int main(int argc, char** argv) {
   using namespace lueur;

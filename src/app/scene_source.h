@@ -1,12 +1,12 @@
 // Opens what the user asked for: an OBJ file or the embedded default scene, with its default view.
 #pragma once
 
-#include "app/options.h"
-#include "render/traced_scene.h"
-
 #include <memory>
 #include <string>
 #include <vector>
+
+#include "app/options.h"
+#include "render/traced_scene.h"
 
 namespace lueur {
 

@@ -65,10 +65,14 @@ std::vector<uint8_t> tonemap_to_rgb8(const Image& linear, const DisplaySettings&
 }
 
 std::string encode_png(const Image& linear, const DisplaySettings& display, const std::string& metadata) {
-  const std::vector<uint8_t> pixels = tonemap_to_rgb8(linear, display);
+  return encode_png_rgb8(tonemap_to_rgb8(linear, display), linear.width, linear.height, metadata);
+}
+
+std::string encode_png_rgb8(const std::vector<uint8_t>& pixels, int width, int height, const std::string& metadata) {
+  if (pixels.size() != 3 * static_cast<size_t>(width) * static_cast<size_t>(height))
+    throw IoError("PNG encoding failed: pixel buffer does not match the image size");
   std::string png;
-  if (!stbi_write_png_to_func(append_to_string, &png, linear.width, linear.height, 3, pixels.data(),
-                              linear.width * 3))
+  if (!stbi_write_png_to_func(append_to_string, &png, width, height, 3, pixels.data(), width * 3))
     throw IoError("PNG encoding failed");
   if (!metadata.empty()) {
     // Insert after the 8-byte signature and the 25-byte IHDR chunk, before the image data.

@@ -18,6 +18,9 @@ struct NamedImage {
 
 /// Encodes a tone-mapped 8-bit RGB PNG; `metadata` goes into a tEXt chunk with the key "lueur" when not empty.
 std::string encode_png(const Image& linear, const DisplaySettings& display, const std::string& metadata = {});
+/// Encodes already tone-mapped 8-bit RGB pixels (rows top to bottom), e.g. read back from the GL display.
+std::string encode_png_rgb8(const std::vector<uint8_t>& pixels, int width, int height,
+                            const std::string& metadata = {});
 /// Encodes a Portable Float Map (little-endian, bottom row first as the format requires).
 std::string encode_pfm(const Image& linear);
 /// Encodes a single-part EXR: the combined image as R, G, B and each layer as <name>.R, <name>.G, <name>.B (float).

@@ -1,0 +1,146 @@
+// Shader compilation, texture uploads and the full-screen draw of the display.
+#include "display/display_pipeline.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "display/shader_sources.h"
+
+namespace lueur {
+namespace {
+
+unsigned compile_shader(const GlApi& gl, GLenum kind, const char* source) {
+  const unsigned shader = gl.CreateShader(kind);
+  gl.ShaderSource(shader, 1, &source, nullptr);
+  gl.CompileShader(shader);
+  GLint ok = 0;
+  gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    gl.GetShaderInfoLog(shader, sizeof log, nullptr, log);
+    gl.DeleteShader(shader);
+    throw std::runtime_error(std::string("display shader does not compile: ") + log);
+  }
+  return shader;
+}
+
+unsigned link_program(const GlApi& gl) {
+  const unsigned vs = compile_shader(gl, GL_VERTEX_SHADER, kDisplayVertexShader);
+  const unsigned fs = compile_shader(gl, GL_FRAGMENT_SHADER, kDisplayFragmentShader);
+  const unsigned program = gl.CreateProgram();
+  gl.AttachShader(program, vs);
+  gl.AttachShader(program, fs);
+  gl.LinkProgram(program);
+  gl.DeleteShader(vs);
+  gl.DeleteShader(fs);
+  GLint ok = 0;
+  gl.GetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    gl.GetProgramInfoLog(program, sizeof log, nullptr, log);
+    gl.DeleteProgram(program);
+    throw std::runtime_error(std::string("display shaders do not link: ") + log);
+  }
+  return program;
+}
+
+}  // namespace
+
+DisplayPipeline::DisplayPipeline(const GlApi& gl) : gl_(gl) {
+  program_ = link_program(gl_);
+  gl_.GenVertexArrays(1, &vertex_array_);
+  for (Slot& slot : slots_) {
+    gl_.GenTextures(1, &slot.texture);
+    gl_.BindTexture(GL_TEXTURE_2D, slot.texture);
+    // Nearest: a texel is a pixel of the film, so the off-screen image reproduces the CPU's exactly, and a
+    // reduced-resolution preview shows as honest blocks.
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    const float black[3] = {0.0f, 0.0f, 0.0f};
+    gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, 1, 1, 0, GL_RGB, GL_FLOAT, black);
+  }
+}
+
+DisplayPipeline::~DisplayPipeline() {
+  for (Slot& slot : slots_) gl_.DeleteTextures(1, &slot.texture);
+  gl_.DeleteVertexArrays(1, &vertex_array_);
+  gl_.DeleteProgram(program_);
+}
+
+std::array<int, 4> DisplayPipeline::slot_layers(const DisplayView& view) const {
+  std::array<int, 4> layers = {-1, -1, -1, -1};
+  if (view.layer) {
+    layers[0] = static_cast<int>(*view.layer);
+    return layers;
+  }
+  for (int p = 0; p < kPassCount; ++p)
+    if (view.enabled[static_cast<size_t>(p)])
+      layers[static_cast<size_t>(p)] = static_cast<int>(layer_of(static_cast<Pass>(p)));
+  return layers;
+}
+
+void DisplayPipeline::update(const Film& film, uint64_t film_version, const DisplayView& view) {
+  width_ = film.width;
+  height_ = film.height;
+  frames_ = film.frames;
+  for (int l = 0; l < kLayerCount; ++l) film_has_[static_cast<size_t>(l)] = film.has(static_cast<Layer>(l));
+  const std::array<int, 4> layers = slot_layers(view);
+  gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  for (size_t s = 0; s < slots_.size(); ++s) {
+    Slot& slot = slots_[s];
+    const int layer = layers[s];
+    if (layer < 0 || !film.has(static_cast<Layer>(layer))) continue;
+    if (slot.layer == layer && slot.version == film_version && slot.width == film.width && slot.height == film.height)
+      continue;
+    const float* data = film.sums[static_cast<size_t>(layer)].data();
+    gl_.BindTexture(GL_TEXTURE_2D, slot.texture);
+    if (slot.width == film.width && slot.height == film.height)
+      gl_.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, film.width, film.height, GL_RGB, GL_FLOAT, data);
+    else
+      gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, film.width, film.height, 0, GL_RGB, GL_FLOAT, data);
+    slot.layer = layer;
+    slot.version = film_version;
+    slot.width = film.width;
+    slot.height = film.height;
+  }
+}
+
+void DisplayPipeline::draw(const DisplayView& view, const PixelRect& viewport, const PixelRect& image) const {
+  const std::array<int, 4> layers = slot_layers(view);
+  float scale[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  for (size_t s = 0; s < 4; ++s) {
+    const int layer = layers[s];
+    // A slot counts only when it holds this very layer of the current film.
+    if (layer < 0 || frames_ == 0 || slots_[s].layer != layer || !film_has_[static_cast<size_t>(layer)] ||
+        slots_[s].width != width_ || slots_[s].height != height_)
+      continue;
+    const float weight = view.layer ? 1.0f : view.weights[s];
+    scale[s] = weight / static_cast<float>(frames_);
+  }
+  gl_.Viewport(viewport.x, viewport.y, viewport.width, viewport.height);
+  gl_.Disable(GL_BLEND);
+  gl_.Disable(GL_SCISSOR_TEST);
+  gl_.Disable(GL_DEPTH_TEST);
+  gl_.Disable(GL_CULL_FACE);
+  gl_.UseProgram(program_);
+  for (int s = 0; s < 4; ++s) {
+    gl_.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + s));
+    gl_.BindTexture(GL_TEXTURE_2D, slots_[static_cast<size_t>(s)].texture);
+    const std::string name = "u_slot" + std::to_string(s);
+    gl_.Uniform1i(gl_.GetUniformLocation(program_, name.c_str()), s);
+  }
+  gl_.Uniform4f(gl_.GetUniformLocation(program_, "u_scale"), scale[0], scale[1], scale[2], scale[3]);
+  gl_.Uniform1f(gl_.GetUniformLocation(program_, "u_exposure"), view.display.exposure);
+  gl_.Uniform1i(gl_.GetUniformLocation(program_, "u_tonemap"), static_cast<int>(view.display.tonemap));
+  // gl_FragCoord is in window coordinates, so the rectangle is too.
+  gl_.Uniform4f(gl_.GetUniformLocation(program_, "u_rect"), static_cast<float>(image.x), static_cast<float>(image.y),
+                static_cast<float>(image.width), static_cast<float>(image.height));
+  gl_.BindVertexArray(vertex_array_);
+  gl_.DrawArrays(GL_TRIANGLES, 0, 3);
+  gl_.BindVertexArray(0);
+  gl_.ActiveTexture(GL_TEXTURE0);
+}
+
+}  // namespace lueur

@@ -1,0 +1,65 @@
+// The GPU half of the display: the tracer's per-pass sums as float textures, combined by the shaders in shaders/
+// (weighted sum, exposure, tone map, sRGB) into whatever framebuffer is bound: a window's or an off-screen one.
+// Weights, exposure and tone map are uniforms, so changing them never touches the accumulation.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+
+#include "display/gl_api.h"
+#include "render/film.h"
+#include "render/tonemap.h"
+
+namespace lueur {
+
+/// What the display shows; every field can change without restarting the tracer.
+struct DisplayView {
+  std::array<bool, kPassCount> enabled = {true, true, true, false};
+  std::array<float, kPassCount> weights = kReportWeights;
+  std::optional<Layer> layer;  ///< set: show this one layer's average instead of the weighted sum of passes
+  DisplaySettings display;
+};
+
+/// A rectangle in framebuffer pixels, origin bottom-left as GL has it.
+struct PixelRect {
+  int x = 0, y = 0, width = 0, height = 0;
+};
+
+class DisplayPipeline {
+ public:
+  /// Compiles and links the display program. Throws std::runtime_error with the GL log on failure.
+  explicit DisplayPipeline(const GlApi& gl);
+  ~DisplayPipeline();
+  DisplayPipeline(const DisplayPipeline&) = delete;
+  DisplayPipeline& operator=(const DisplayPipeline&) = delete;
+
+  /// Uploads the layers `view` needs from `film`, skipping textures that already hold that layer of the same
+  /// `film_version` (a number the caller changes whenever the film's contents change).
+  void update(const Film& film, uint64_t film_version, const DisplayView& view);
+
+  /// Draws the last uploaded film into `image` of the bound framebuffer, whose full size is `viewport`
+  /// (pixels outside the image are black).
+  void draw(const DisplayView& view, const PixelRect& viewport, const PixelRect& image) const;
+
+  int film_width() const { return width_; }
+  int film_height() const { return height_; }
+
+ private:
+  struct Slot {
+    unsigned texture = 0;
+    int layer = -1;  ///< which film layer it holds, -1 none
+    uint64_t version = 0;
+    int width = 0, height = 0;
+  };
+  std::array<int, 4> slot_layers(const DisplayView& view) const;
+
+  const GlApi& gl_;
+  unsigned program_ = 0, vertex_array_ = 0;
+  std::array<Slot, 4> slots_;
+  std::array<bool, kLayerCount> film_has_{};
+  uint64_t frames_ = 0;
+  int width_ = 0, height_ = 0;
+};
+
+}  // namespace lueur

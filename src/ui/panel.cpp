@@ -1,0 +1,166 @@
+// The panel's widgets, grouped as the report explains the image: passes and weights, light sampling, L2 and its
+// reuse, AO, what to view, the display transform, statistics, and files.
+#include "ui/panel.h"
+
+#include <imgui.h>
+
+#include <cstdio>
+
+namespace lueur {
+namespace {
+
+template <size_t N>
+bool enum_combo(const char* label, const std::array<std::string_view, N>& names, int& value) {
+  bool changed = false;
+  const std::string current(names[static_cast<size_t>(value)]);
+  if (ImGui::BeginCombo(label, current.c_str())) {
+    for (size_t i = 0; i < N; ++i) {
+      const std::string name(names[i]);
+      const bool selected = static_cast<int>(i) == value;
+      if (ImGui::Selectable(name.c_str(), selected)) {
+        changed = value != static_cast<int>(i);
+        value = static_cast<int>(i);
+      }
+      if (selected) ImGui::SetItemDefaultFocus();
+    }
+    ImGui::EndCombo();
+  }
+  return changed;
+}
+
+template <typename Enum, size_t N>
+bool enum_combo(const char* label, const std::array<std::string_view, N>& names, Enum& value) {
+  int v = static_cast<int>(value);
+  const bool changed = enum_combo(label, names, v);
+  value = static_cast<Enum>(v);
+  return changed;
+}
+
+void passes_section(ViewState& v) {
+  static const char* const kLabels[kPassCount] = {"Le  (emission seen)", "L1  (direct light)",
+                                                  "L2  (one-bounce indirect)", "AO  (ambient occlusion)"};
+  for (int p = 0; p < kPassCount; ++p) {
+    const size_t i = static_cast<size_t>(p);
+    ImGui::PushID(p);
+    ImGui::Checkbox("##on", &v.render.enabled[i]);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8.0f);
+    ImGui::SliderFloat("##weight", &v.weights[i], 0.0f, 2.0f, "%.2f");
+    ImGui::SameLine();
+    ImGui::TextUnformatted(kLabels[p]);
+    ImGui::PopID();
+  }
+  if (ImGui::Button("Report (Le 1, L1 0.6, L2 0.4)")) v.weights = kReportWeights;
+  ImGui::SameLine();
+  if (ImGui::Button("Physical (all 1)")) v.weights = {1.0f, 1.0f, 1.0f, 1.0f};
+}
+
+void sampling_section(ViewState& v, PanelActions& actions) {
+  RenderSettings& r = v.render;
+  enum_combo("Light sampling", kLightStrategyNames, r.lights);
+  ImGui::SliderInt("L1 shadow rays", &r.l1_rays, 0, 64);
+  ImGui::SliderFloat("Blinn-Phong K", &r.blinn_k, 0.0f, 1.0f, "%.2f");
+  ImGui::SliderInt("L2 bounce rays", &r.l2_rays, 0, 64);
+  enum_combo("L2 reuse", kReuseModeNames, r.reuse);
+  ImGui::SliderFloat("Recompute ratio", &r.recompute_ratio, 0.0f, 1.0f, "%.3f");
+  ImGui::Checkbox("Reuse diffuse L1 only", &r.reuse_diffuse_only);
+  ImGui::SliderInt("AO rays", &r.ao_rays, 0, 64);
+  ImGui::InputFloat("AO radius (0: auto)", &r.ao_radius, 0.0f, 0.0f, "%.4g");
+  if (r.ao_radius < 0.0f) r.ao_radius = 0.0f;
+  if (ImGui::Checkbox("Smooth normals", &v.smooth_normals)) actions.smooth_normals_changed = true;
+  int seed = static_cast<int>(r.seed & 0x7fffffff);
+  if (ImGui::InputInt("Seed", &seed) && seed >= 0) r.seed = static_cast<uint64_t>(seed);
+}
+
+void view_section(ViewState& v) {
+  // "combined" first, then every layer; the layers that explain reuse are report figures 7 and 8.
+  int current = v.layer ? static_cast<int>(*v.layer) + 1 : 0;
+  const std::string preview = v.layer ? std::string(kLayerNames[static_cast<size_t>(*v.layer)]) : "combined";
+  if (ImGui::BeginCombo("View", preview.c_str())) {
+    for (int i = 0; i <= kLayerCount; ++i) {
+      const std::string name = i == 0 ? "combined" : std::string(kLayerNames[static_cast<size_t>(i - 1)]);
+      if (ImGui::Selectable(name.c_str(), i == current)) current = i;
+    }
+    ImGui::EndCombo();
+  }
+  if (current == 0)
+    v.layer.reset();
+  else
+    v.layer = static_cast<Layer>(current - 1);
+  ImGui::SliderFloat("Exposure (stops)", &v.display.exposure, -10.0f, 10.0f, "%.2f");
+  enum_combo("Tone map", kToneMapNames, v.display.tonemap);
+}
+
+void statistics_section(const PanelModel& m) {
+  const TracerStats& s = m.stats;
+  ImGui::Text("%s: %zu triangles, %zu emitters", m.scene_name.c_str(), m.triangles, m.emitters);
+  ImGui::Text("Resolution %d x %d%s", m.film_width * m.preview_divisor, m.film_height * m.preview_divisor,
+              m.preview_divisor > 1 ? " (preview)" : "");
+  ImGui::Text("Frames %llu  (samples per pixel %llu)", static_cast<unsigned long long>(s.frames),
+              static_cast<unsigned long long>(s.frames));
+  ImGui::Text("Elapsed %.2f s, last frame %.1f ms", s.seconds, 1e3 * s.last_frame_seconds);
+  ImGui::Text("%.2f Mrays/s", s.mrays_per_second());
+  if (s.l2_bounce_hits > 0)
+    ImGui::Text("L2: %.1f%% of bounce hits reused L1",
+                100.0 * static_cast<double>(s.l2_reused) / static_cast<double>(s.l2_bounce_hits));
+  if (m.display_fps > 0.0) ImGui::Text("Display %.0f frames/s", m.display_fps);
+}
+
+void control_section(PanelModel& m, PanelActions& actions) {
+  if (ImGui::Button(m.paused ? "Resume" : "Pause")) m.paused = !m.paused;
+  ImGui::SameLine();
+  if (ImGui::Button("Reset")) actions.reset = true;
+  ImGui::SameLine();
+  int limit = static_cast<int>(std::min<uint64_t>(m.view.frame_limit, 1000000));
+  ImGui::SetNextItemWidth(100.0f);
+  if (ImGui::InputInt("Frame limit", &limit, 0, 0)) m.view.frame_limit = static_cast<uint64_t>(std::max(0, limit));
+  if (ImGui::Button("Frame scene (F)")) actions.frame_scene = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Reset view (R)")) actions.reset_camera = true;
+}
+
+void files_section(PanelModel& m, PanelActions& actions) {
+  if (ImGui::Button("Save PNG")) actions.save_png = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Save PFM")) actions.save_pfm = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Save EXR")) actions.save_exr = true;
+  char path[512];
+  std::snprintf(path, sizeof path, "%s", m.view_path.c_str());
+  if (ImGui::InputText("View file", path, sizeof path)) m.view_path = path;
+  if (ImGui::Button("Save view")) actions.save_view = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Load view")) actions.load_view = true;
+}
+
+}  // namespace
+
+PanelActions draw_panel(PanelModel& m) {
+  PanelActions actions;
+  ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(kPanelWidth, 0.0f), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  if (!ImGui::Begin("Lueur")) {
+    ImGui::End();
+    return actions;
+  }
+  ImGui::PushItemWidth(-ImGui::GetFontSize() * 9.0f);  // leave room for the labels on the right
+  if (!m.status.empty()) ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.3f, 1.0f), "%s", m.status.c_str());
+  if (!m.message.empty()) {
+    const ImVec4 colour = m.message_is_error ? ImVec4(1.0f, 0.35f, 0.3f, 1.0f) : ImVec4(0.6f, 0.9f, 0.6f, 1.0f);
+    ImGui::PushStyleColor(ImGuiCol_Text, colour);
+    ImGui::TextWrapped("%s", m.message.c_str());
+    ImGui::PopStyleColor();
+  }
+  if (ImGui::CollapsingHeader("Passes", ImGuiTreeNodeFlags_DefaultOpen)) passes_section(m.view);
+  if (ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) sampling_section(m.view, actions);
+  if (ImGui::CollapsingHeader("View and display", ImGuiTreeNodeFlags_DefaultOpen)) view_section(m.view);
+  if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) statistics_section(m);
+  if (ImGui::CollapsingHeader("Control", ImGuiTreeNodeFlags_DefaultOpen)) control_section(m, actions);
+  if (ImGui::CollapsingHeader("Files", ImGuiTreeNodeFlags_DefaultOpen)) files_section(m, actions);
+  ImGui::PopItemWidth();
+  ImGui::End();
+  return actions;
+}
+
+}  // namespace lueur

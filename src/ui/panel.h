@@ -1,0 +1,43 @@
+// The Dear ImGui control panel: edits a ViewState in place and reports the buttons pressed. It draws with whatever
+// ImGui back-end is running (the window's GLFW one, or none for a headless screenshot) and knows nothing of the
+// tracer thread: the caller applies the edited state.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "render/progressive_tracer.h"
+#include "render/view_state.h"
+
+namespace lueur {
+
+struct PanelModel {
+  ViewState view;  ///< edited by the widgets
+  bool paused = false;
+  // Read-only figures.
+  TracerStats stats;
+  int film_width = 0, film_height = 0, preview_divisor = 1;
+  std::string scene_name;
+  size_t triangles = 0, emitters = 0;
+  std::string status;   ///< e.g. "loading bunny.obj: building BVH"; empty when idle
+  std::string message;  ///< the last saved path or error
+  bool message_is_error = false;
+  std::string view_path = "lueur-view.json";  ///< the file "Save view" and "Load view" use
+  double display_fps = 0.0;
+};
+
+struct PanelActions {
+  bool reset = false;
+  bool save_png = false, save_pfm = false, save_exr = false;
+  bool save_view = false, load_view = false;
+  bool frame_scene = false, reset_camera = false;
+  bool smooth_normals_changed = false;
+};
+
+/// Draws the panel as one ImGui window at the top-left of the display. Call between ImGui::NewFrame and Render.
+PanelActions draw_panel(PanelModel& model);
+
+/// The panel's width in pixels (for tests that look for it in a screenshot).
+inline constexpr float kPanelWidth = 340.0f;
+
+}  // namespace lueur

@@ -1,0 +1,138 @@
+// The GL display path against its CPU reference: the same film through the display shaders in an EGL and an
+// OSMesa context (Mesa's llvmpipe, no GPU needed) must equal the CPU tone mapping within one level per channel,
+// for every tone map, exposure, weights and single-layer views.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "render/image_output.h"
+#include "test_support.h"
+#include "ui/headless_screenshot.h"
+
+namespace lueur {
+namespace {
+
+/// A film with sums spread over five orders of magnitude, so every part of the tone curves is exercised.
+Film random_film(int width, int height, uint64_t frames, uint32_t seed) {
+  RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.enabled = {true, true, true, true};
+  Film film;
+  film.reset(settings);
+  film.frames = frames;
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> exponent(-4.0f, 1.5f);
+  for (auto& sum : film.sums)
+    for (float& v : sum) v = static_cast<float>(frames) * std::pow(10.0f, exponent(random));
+  return film;
+}
+
+std::vector<uint8_t> cpu_reference(const Film& film, const DisplayView& view) {
+  const Image linear = view.layer ? layer_average(film, *view.layer) : combine_passes(film, view.enabled, view.weights);
+  return tonemap_to_rgb8(linear, view.display);
+}
+
+/// Largest difference per channel between two RGB8 images of the same size.
+int max_difference(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+  EXPECT_EQ(a.size(), b.size());
+  int worst = 0;
+  for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) worst = std::max(worst, std::abs(int(a[i]) - int(b[i])));
+  return worst;
+}
+
+class GlDisplay : public ::testing::TestWithParam<HeadlessGl> {};
+
+TEST_P(GlDisplay, EqualsTheCpuToneMappingWithinOneLevel) {
+  const Film film = random_film(67, 41, 13, 5);  // odd sizes catch row-order and alignment mistakes
+  std::vector<DisplayView> views;
+  for (int t = 0; t < 3; ++t)
+    for (float exposure : {-2.0f, 0.0f, 1.5f}) {
+      DisplayView v;
+      v.display.tonemap = static_cast<ToneMap>(t);
+      v.display.exposure = exposure;
+      views.push_back(v);
+    }
+  DisplayView weighted;
+  weighted.enabled = {true, false, true, true};
+  weighted.weights = {0.3f, 5.0f, 1.7f, 0.25f};
+  views.push_back(weighted);
+  DisplayView single;
+  single.layer = Layer::kReuseFraction;
+  single.display.tonemap = ToneMap::kReinhard;
+  views.push_back(single);
+
+  for (const DisplayView& view : views) {
+    Screenshot shot;
+    try {
+      shot = render_headless_screenshot(GetParam(), film, view);
+    } catch (const std::runtime_error& e) {
+      FAIL() << "no " << kHeadlessGlNames[static_cast<size_t>(GetParam())] << " context: " << e.what();
+    }
+    ASSERT_EQ(shot.width, film.width);
+    ASSERT_EQ(shot.height, film.height);
+    const std::vector<uint8_t> cpu = cpu_reference(film, view);
+    EXPECT_LE(max_difference(shot.rgb, cpu), 1)
+        << shot.context << ", tone map " << kToneMapNames[static_cast<size_t>(view.display.tonemap)] << ", exposure "
+        << view.display.exposure;
+  }
+}
+
+TEST_P(GlDisplay, AnEmptyFilmIsBlack) {
+  Film film = random_film(8, 8, 0, 1);
+  const Screenshot shot = render_headless_screenshot(GetParam(), film, DisplayView{});
+  for (uint8_t v : shot.rgb) ASSERT_EQ(v, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Contexts, GlDisplay, ::testing::Values(HeadlessGl::kEgl, HeadlessGl::kOsmesa),
+                         [](const ::testing::TestParamInfo<HeadlessGl>& param_info) {
+                           return std::string(kHeadlessGlNames[static_cast<size_t>(param_info.param)]);
+                         });
+
+TEST(GlDisplay, ThePanelChangesTheImageOnlyWhereItIs) {
+  const Film film = random_film(480, 420, 3, 9);
+  PanelModel panel;
+  panel.scene_name = "random film";
+  const Screenshot plain = render_headless_screenshot(HeadlessGl::kEgl, film, DisplayView{});
+  const Screenshot with_ui = render_headless_screenshot(HeadlessGl::kEgl, film, DisplayView{}, &panel);
+  ASSERT_EQ(plain.rgb.size(), with_ui.rgb.size());
+  const auto differs = [&](int x0, int y0, int x1, int y1) {
+    int count = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x)
+        for (int c = 0; c < 3; ++c) {
+          const size_t i = 3 * (static_cast<size_t>(y) * static_cast<size_t>(film.width) + static_cast<size_t>(x)) + c;
+          count += plain.rgb[i] != with_ui.rgb[i];
+        }
+    return count;
+  };
+  const int panel_right = 8 + static_cast<int>(kPanelWidth);
+  EXPECT_GT(differs(8, 8, panel_right, 200), 3 * 200 * 100) << "the panel covers its corner";
+  EXPECT_EQ(differs(panel_right + 4, 0, film.width, film.height), 0) << "and nothing right of it";
+}
+
+TEST(GlDisplay, HeadlessScreenshotsThroughTheCommandLine) {
+  const std::string dir = test::make_temp_dir("gl-cli");
+  const auto run = [&](const std::string& gl, const std::string& out) {
+    return test::run_lueur("--headless --size 48x40 --frames 2 --l1-rays 2 --l2-rays 2 --gl " + gl + " --out " + dir +
+                           "/" + out);
+  };
+  for (const char* gl : {"none", "egl", "osmesa", "auto"}) {
+    const test::CommandResult r = run(gl, std::string(gl) + ".png");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+  }
+  // A screenshot is a PNG; linear formats and unknown contexts are refused before rendering.
+  const test::CommandResult bad = run("egl", "shot.pfm");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.output.find("--out must be a .png"), std::string::npos) << bad.output;
+  const test::CommandResult bad_gl = run("vulkan", "x.png");
+  EXPECT_EQ(bad_gl.exit_code, 2);
+  EXPECT_NE(bad_gl.output.find("--gl"), std::string::npos) << bad_gl.output;
+  const test::CommandResult ui_without_gl =
+      test::run_lueur("--headless --size 16x16 --frames 1 --ui --out " + dir + "/ui.png");
+  EXPECT_EQ(ui_without_gl.exit_code, 2);
+  EXPECT_FALSE(test::file_exists(dir + "/ui.png"));
+}
+
+}  // namespace
+}  // namespace lueur
