@@ -3,14 +3,13 @@
 // the same code draw into a GLFW window, an EGL surfaceless context and an OSMesa buffer.
 #pragma once
 
+#include "display/gl_proc.h"
+
 #include <GL/glcorearb.h>
 
 #include <string>
 
 namespace lueur {
-
-using GlProc = void (*)();
-using GlGetProcAddress = GlProc (*)(const char* name);
 
 // X-macro: one line per function, name without the gl prefix and its glcorearb.h pointer type.
 #define LUEUR_GL_FUNCTIONS(X)                                \

@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "display/gl_api.h"
+#include "display/gl_proc.h"
 
 namespace lueur {
 
