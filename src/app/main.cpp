@@ -6,6 +6,7 @@
 
 #include "app/headless.h"
 #include "app/options.h"
+#include "app/viewer.h"
 #include "core/atomic_file.h"
 #include "scene/default_scene.h"
 #include "scene/obj_loader.h"
@@ -21,12 +22,7 @@ int main(int argc, char** argv) {
       std::printf("%s\n", options->export_default_scene.c_str());
       return 0;
     }
-    if (!options->headless) {
-      std::fprintf(stderr,
-                   "lueur: error: this build has no interactive window yet; render to a file with --headless --out "
-                   "FILE\n");
-      return 2;
-    }
+    if (!options->headless) return run_viewer(*options);
     return run_headless(*options);
   } catch (const UsageError& e) {
     std::fprintf(stderr, "lueur: error: %s (see lueur --help)\n", e.what());

@@ -5,7 +5,11 @@
 
 namespace lueur {
 
-OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect) {
+OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect,
+                       const std::function<void(const std::string& stage)>& on_stage) {
+  const auto stage = [&](const std::string& what) {
+    if (on_stage) on_stage(what);
+  };
   OpenedScene opened;
   Scene scene;
   if (path.empty()) {
@@ -14,6 +18,7 @@ OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspec
     const DefaultView view;
     opened.default_view = CameraSpec{view.eye, view.target, view.up, view.fovy_degrees};
   } else {
+    stage("reading " + path);
     LoadOptions load_options;
     load_options.smooth_normals = smooth_normals;
     LoadedScene loaded = load_obj(path, load_options);
@@ -21,6 +26,7 @@ OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspec
     opened.warnings = std::move(loaded.warnings);
     opened.default_view = frame_box(scene.bounds(), 45.0f, aspect);
   }
+  stage("building the BVH of " + std::to_string(scene.triangles.size()) + " triangles");
   opened.traced = prepare_scene(std::move(scene));
   return opened;
 }

@@ -1,6 +1,7 @@
 // Opens what the user asked for: an OBJ file or the embedded default scene, with its default view.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -18,6 +19,8 @@ struct OpenedScene {
 
 /// Loads (or builds) the scene, applies the normal-smoothing option and prepares it for tracing.
 /// Throws SceneError for a scene that cannot be used.
-OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect);
+/// `on_stage`, when given, is told each step as it starts (the window shows it while loading in the background).
+OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect,
+                       const std::function<void(const std::string& stage)>& on_stage = {});
 
 }  // namespace lueur

@@ -36,16 +36,24 @@ bool enum_combo(const char* label, const std::array<std::string_view, N>& names,
   return changed;
 }
 
-void passes_section(ViewState& v) {
+void record_widget(PanelModel& m, const std::string& name) {
+  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+  m.widget_rects[name] = {lo.x, lo.y, hi.x, hi.y};
+}
+
+void passes_section(PanelModel& m) {
+  ViewState& v = m.view;
   static const char* const kLabels[kPassCount] = {"Le  (emission seen)", "L1  (direct light)",
                                                   "L2  (one-bounce indirect)", "AO  (ambient occlusion)"};
   for (int p = 0; p < kPassCount; ++p) {
     const size_t i = static_cast<size_t>(p);
     ImGui::PushID(p);
     ImGui::Checkbox("##on", &v.render.enabled[i]);
+    record_widget(m, "pass-" + std::string(kPassNames[i]));
     ImGui::SameLine();
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8.0f);
     ImGui::SliderFloat("##weight", &v.weights[i], 0.0f, 2.0f, "%.2f");
+    record_widget(m, "weight-" + std::string(kPassNames[i]));
     ImGui::SameLine();
     ImGui::TextUnformatted(kLabels[p]);
     ImGui::PopID();
@@ -152,13 +160,16 @@ PanelActions draw_panel(PanelModel& m) {
     ImGui::TextWrapped("%s", m.message.c_str());
     ImGui::PopStyleColor();
   }
-  if (ImGui::CollapsingHeader("Passes", ImGuiTreeNodeFlags_DefaultOpen)) passes_section(m.view);
+  if (ImGui::CollapsingHeader("Passes", ImGuiTreeNodeFlags_DefaultOpen)) passes_section(m);
   if (ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) sampling_section(m.view, actions);
   if (ImGui::CollapsingHeader("View and display", ImGuiTreeNodeFlags_DefaultOpen)) view_section(m.view);
   if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) statistics_section(m);
   if (ImGui::CollapsingHeader("Control", ImGuiTreeNodeFlags_DefaultOpen)) control_section(m, actions);
   if (ImGui::CollapsingHeader("Files", ImGuiTreeNodeFlags_DefaultOpen)) files_section(m, actions);
   ImGui::PopItemWidth();
+  record_widget(m, "panel-end");
+  const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  m.widget_rects["panel"] = {pos.x, pos.y, pos.x + size.x, pos.y + size.y};
   ImGui::End();
   return actions;
 }

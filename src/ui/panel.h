@@ -3,7 +3,9 @@
 // tracer thread: the caller applies the edited state.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <map>
 #include <string>
 
 #include "render/progressive_tracer.h"
@@ -24,6 +26,9 @@ struct PanelModel {
   bool message_is_error = false;
   std::string view_path = "lueur-view.json";  ///< the file "Save view" and "Load view" use
   double display_fps = 0.0;
+  /// Where some widgets were drawn last frame (x0, y0, x1, y1 in window pixels, y down), by name ("pass-l2",
+  /// "weight-l1", ...): the window reports them so that tests can click them with synthetic input.
+  std::map<std::string, std::array<float, 4>> widget_rects;
 };
 
 struct PanelActions {

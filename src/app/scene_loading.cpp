@@ -1,0 +1,57 @@
+// The loading thread: every failure becomes a message, never an exception escaping the thread.
+#include "app/scene_loading.h"
+
+#include <cstdio>
+#include <exception>
+#include <new>
+
+namespace lueur {
+
+SceneLoading::SceneLoading(std::string path, bool smooth_normals, float aspect)
+    : path_(std::move(path)), start_(std::chrono::steady_clock::now()) {
+  thread_ = std::thread([this, smooth_normals, aspect] {
+    std::optional<OpenedScene> result;
+    std::string error;
+    try {
+      result = open_scene(path_, smooth_normals, aspect, [this](const std::string& stage) {
+        std::lock_guard lock(mutex_);
+        stage_ = stage;
+      });
+    } catch (const std::bad_alloc&) {
+      error = "out of memory while loading '" + path_ + "'";
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+    std::lock_guard lock(mutex_);
+    result_ = std::move(result);
+    error_ = std::move(error);
+    finished_ = true;
+  });
+}
+
+SceneLoading::~SceneLoading() { thread_.join(); }
+
+std::string SceneLoading::status() const {
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  char elapsed[32];
+  std::snprintf(elapsed, sizeof elapsed, " (%.1f s)", seconds);
+  std::lock_guard lock(mutex_);
+  return "loading " + (path_.empty() ? std::string("the default scene") : path_) + ": " + stage_ + elapsed;
+}
+
+bool SceneLoading::finished() const {
+  std::lock_guard lock(mutex_);
+  return finished_;
+}
+
+std::optional<OpenedScene> SceneLoading::take_result() {
+  std::lock_guard lock(mutex_);
+  return std::move(result_);
+}
+
+std::string SceneLoading::error() const {
+  std::lock_guard lock(mutex_);
+  return error_;
+}
+
+}  // namespace lueur

@@ -1,0 +1,428 @@
+// The window's main loop: input, panel, apply changes to the tracer, take its newest snapshot, draw.
+// The display never waits for the tracer: it only ever swaps in a finished snapshot.
+#include "app/viewer.h"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "app/camera_controls.h"
+#include "app/scene_loading.h"
+#include "core/atomic_file.h"
+#include "display/display_pipeline.h"
+#include "render/image_output.h"
+#include "render/progressive_tracer.h"
+#include "ui/imgui_gl.h"
+#include "ui/panel.h"
+
+namespace lueur {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+/// Input the GLFW callbacks collect between frames.
+struct InputEvents {
+  double scroll = 0.0;
+  std::vector<std::string> dropped;
+};
+
+InputEvents& events_of(GLFWwindow* window) { return *static_cast<InputEvents*>(glfwGetWindowUserPointer(window)); }
+
+std::string timestamped_name(const char* extension) {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char name[64];
+  std::strftime(name, sizeof name, "lueur-%Y%m%d-%H%M%S", &local);
+  return std::string(name) + extension;
+}
+
+bool has_extension(const std::string& path, const std::string& extension) {
+  if (path.size() < extension.size()) return false;
+  std::string tail = path.substr(path.size() - extension.size());
+  for (char& c : tail) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return tail == extension;
+}
+
+class Viewer {
+ public:
+  Viewer(const AppOptions& options, GLFWwindow* window, const GlApi& gl)
+      : options_(options), window_(window), gl_(gl), pipeline_(gl), tracer_(options.threads) {
+    panel_.view = view_from_options(options);
+    panel_.paused = false;
+    tracer_.set_frame_limit(panel_.view.frame_limit);
+    start_loading(options.scene_path, true);
+  }
+
+  void run() {
+    Clock::time_point last_state_write{};
+    while (!glfwWindowShouldClose(window_)) {
+      const Clock::time_point frame_start = Clock::now();
+      if (glfwGetWindowAttrib(window_, GLFW_ICONIFIED))
+        glfwWaitEventsTimeout(0.1);  // minimised: nothing to draw, the tracer keeps its size
+      else
+        glfwPollEvents();
+      finish_loading();
+
+      imgui_opengl_new_frame();
+      ImGui_ImplGlfw_NewFrame();
+      ImGui::NewFrame();
+      panel_.stats = tracer_.stats();
+      panel_.status = loading_ ? loading_->status() : std::string();
+      const PanelActions actions = draw_panel(panel_);
+      handle_input();
+      handle_actions(actions);
+      apply_to_tracer();
+      draw();
+      ImGui::Render();
+      imgui_opengl_render();
+      glfwSwapBuffers(window_);
+      ++display_frames_;
+      record_frame_time(frame_start);
+      if (!options_.state_file.empty() && seconds_between(last_state_write, Clock::now()) > 0.1) {
+        write_state_file();
+        last_state_write = Clock::now();
+      }
+      pace(frame_start);
+    }
+    if (!options_.state_file.empty()) write_state_file();
+  }
+
+ private:
+  // ---- scenes -----------------------------------------------------------------------------------------------
+  void start_loading(const std::string& path, bool initial) {
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window_, &w, &h);
+    const float aspect = w > 0 && h > 0 ? static_cast<float>(w) / static_cast<float>(h) : 1.0f;
+    loading_ = std::make_unique<SceneLoading>(path, panel_.view.smooth_normals, aspect);
+    loading_is_initial_ = initial;
+  }
+
+  void finish_loading() {
+    if (!loading_ || !loading_->finished()) return;
+    std::optional<OpenedScene> opened = loading_->take_result();
+    if (!opened) {
+      // The old scene stays; the error goes to the panel.
+      set_message("cannot load: " + loading_->error(), true);
+      loading_.reset();
+      return;
+    }
+    const bool keep_camera = reloading_same_scene_ || (loading_is_initial_ && panel_.view.camera.has_value());
+    scene_path_ = loading_->path();
+    loading_.reset();
+    reloading_same_scene_ = false;
+    scene_ = std::move(*opened);
+    home_camera_ = (loading_is_initial_ && options_.camera) ? panel_.view.camera.value() : scene_.default_view;
+    if (!keep_camera) panel_.view.camera = home_camera_;
+    panel_.scene_name = scene_.traced->scene.name;
+    panel_.triangles = scene_.traced->scene.triangles.size();
+    panel_.emitters = scene_.traced->lights.size();
+    std::string warnings;
+    for (const std::string& w : scene_.warnings) warnings += (warnings.empty() ? "" : "; ") + w;
+    if (!warnings.empty()) set_message("warning: " + warnings, false);
+    tracer_.set_scene(scene_.traced);
+  }
+
+  // ---- input ------------------------------------------------------------------------------------------------
+  void handle_input() {
+    InputEvents& events = events_of(window_);
+    for (const std::string& path : events.dropped) {
+      if (has_extension(path, ".json"))
+        load_view(path);
+      else
+        start_loading(path, false);
+    }
+    events.dropped.clear();
+    if (!panel_.view.camera) {
+      events.scroll = 0.0;
+      return;
+    }
+    CameraSpec& camera = *panel_.view.camera;
+    const ImGuiIO& io = ImGui::GetIO();
+    int width = 0, height = 0;
+    glfwGetWindowSize(window_, &width, &height);
+    double x = 0.0, y = 0.0;
+    glfwGetCursorPos(window_, &x, &y);
+    const float dx = static_cast<float>(x - last_cursor_x_), dy = static_cast<float>(y - last_cursor_y_);
+    last_cursor_x_ = x;
+    last_cursor_y_ = y;
+
+    // A drag belongs to the view only when it started outside the panel.
+    const bool left = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    const bool middle = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+    if (!left && !middle)
+      dragging_ = false;
+    else if (!dragging_ && !io.WantCaptureMouse)
+      dragging_ = true;
+    if (dragging_ && height > 0 && (dx != 0.0f || dy != 0.0f)) {
+      const bool shift = glfwGetKey(window_, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
+                         glfwGetKey(window_, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+      const float h = static_cast<float>(height);
+      if (middle || shift)
+        camera = pan(camera, dx / h, dy / h);
+      else
+        camera = orbit(camera, 3.0f * dx / h, -3.0f * dy / h);
+    }
+    if (events.scroll != 0.0 && !io.WantCaptureMouse) camera = dolly(camera, static_cast<float>(events.scroll));
+    events.scroll = 0.0;
+
+    if (io.WantCaptureKeyboard) return;
+    const double now = glfwGetTime();
+    const float dt = static_cast<float>(std::min(0.1, now - last_key_time_));
+    last_key_time_ = now;
+    const float speed = 0.4f * (scene_.traced ? scene_.traced->diagonal : 1.0f) * dt;
+    const auto down = [&](int key) { return glfwGetKey(window_, key) == GLFW_PRESS ? 1.0f : 0.0f; };
+    const float forward = down(GLFW_KEY_W) - down(GLFW_KEY_S), right = down(GLFW_KEY_D) - down(GLFW_KEY_A),
+                up = down(GLFW_KEY_E) - down(GLFW_KEY_Q);
+    if (forward != 0.0f || right != 0.0f || up != 0.0f)
+      camera = fly(camera, forward * speed, right * speed, up * speed);
+    const bool f = down(GLFW_KEY_F) > 0.0f, r = down(GLFW_KEY_R) > 0.0f;
+    if (f && !f_was_down_ && scene_.traced) camera = frame_bounds(camera, scene_.traced->scene.bounds(), aspect());
+    if (r && !r_was_down_ && scene_.traced) camera = home_camera_;
+    f_was_down_ = f;
+    r_was_down_ = r;
+  }
+
+  float aspect() const {
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window_, &w, &h);
+    return w > 0 && h > 0 ? static_cast<float>(w) / static_cast<float>(h) : 1.0f;
+  }
+
+  // ---- panel buttons ----------------------------------------------------------------------------------------
+  void handle_actions(const PanelActions& a) {
+    if (a.reset) tracer_.reset();
+    if (a.save_png) save_image(".png");
+    if (a.save_pfm) save_image(".pfm");
+    if (a.save_exr) save_image(".exr");
+    if (a.save_view) {
+      try {
+        ViewState view = panel_.view;
+        view.frames = shown_.film.frames;
+        save_view_file(panel_.view_path, view);
+        set_message("saved view " + panel_.view_path, false);
+      } catch (const std::exception& e) {
+        set_message(e.what(), true);
+      }
+    }
+    if (a.load_view) load_view(panel_.view_path);
+    if (scene_.traced && a.frame_scene && panel_.view.camera)
+      panel_.view.camera = frame_bounds(*panel_.view.camera, scene_.traced->scene.bounds(), aspect());
+    if (scene_.traced && a.reset_camera) panel_.view.camera = home_camera_;
+    if (a.smooth_normals_changed && !loading_) {
+      reloading_same_scene_ = true;
+      start_loading(scene_path_, false);
+    }
+  }
+
+  void load_view(const std::string& path) {
+    try {
+      const ViewState view = load_view_file(path, panel_.view);
+      const bool smooth_changed = view.smooth_normals != panel_.view.smooth_normals;
+      panel_.view = view;
+      if (!panel_.view.camera) panel_.view.camera = home_camera_;
+      glfwSetWindowSize(window_, view.render.width, view.render.height);
+      if (smooth_changed && !loading_) {
+        reloading_same_scene_ = true;
+        start_loading(scene_path_, false);
+      }
+      set_message("loaded view " + path, false);
+    } catch (const std::exception& e) {
+      set_message(e.what(), true);
+    }
+  }
+
+  void save_image(const char* extension) {
+    const Film& film = shown_.film;
+    if (shown_.preview_divisor != 1 || film.frames == 0) {
+      set_message("nothing to save yet: wait for the first full frame", true);
+      return;
+    }
+    const std::string path = timestamped_name(extension);
+    try {
+      std::vector<NamedImage> layers;
+      for (int l = 0; l < kLayerCount; ++l)
+        if (film.has(static_cast<Layer>(l)))
+          layers.push_back(
+              {std::string(kLayerNames[static_cast<size_t>(l)]), layer_average(film, static_cast<Layer>(l))});
+      const DisplayView view = display_view();
+      const Image shown =
+          view.layer ? layer_average(film, *view.layer) : combine_passes(film, view.enabled, view.weights);
+      AppOptions described = options_;
+      described.scene_path = scene_path_;
+      ViewState state = panel_.view;
+      state.frames = film.frames;
+      apply_view(state, described);
+      write_image(path, shown, layers, view.display, describe_options(described));
+      set_message("saved " + path, false);
+    } catch (const std::exception& e) {
+      set_message(e.what(), true);
+    }
+  }
+
+  void set_message(const std::string& text, bool error) {
+    panel_.message = text;
+    panel_.message_is_error = error;
+  }
+
+  // ---- tracer and display -----------------------------------------------------------------------------------
+  DisplayView display_view() const {
+    DisplayView v;
+    v.enabled = panel_.view.render.enabled;
+    v.weights = panel_.view.weights;
+    v.layer = panel_.view.layer;
+    v.display = panel_.view.display;
+    return v;
+  }
+
+  void apply_to_tracer() {
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window_, &w, &h);
+    if (w > 0 && h > 0) {  // a minimised window (0 x 0) keeps the last size
+      panel_.view.render.width = w;
+      panel_.view.render.height = h;
+    }
+    tracer_.set_settings(panel_.view.render);
+    if (panel_.view.camera) tracer_.set_camera(*panel_.view.camera);
+    tracer_.set_paused(panel_.paused);
+    tracer_.set_frame_limit(panel_.view.frame_limit);
+  }
+
+  void draw() {
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window_, &w, &h);
+    if (tracer_.take_snapshot(shown_)) {
+      panel_.film_width = shown_.film.width;
+      panel_.film_height = shown_.film.height;
+      panel_.preview_divisor = shown_.preview_divisor;
+    }
+    if (w <= 0 || h <= 0) return;
+    const DisplayView view = display_view();
+    if (shown_.film.width > 0) pipeline_.update(shown_.film, shown_.version, view);
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl_.ClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+    gl_.Clear(GL_COLOR_BUFFER_BIT);
+    if (shown_.film.width > 0) pipeline_.draw(view, PixelRect{0, 0, w, h}, PixelRect{0, 0, w, h});
+    if (view.layer && shown_.film.width > 0 && !shown_.film.has(*view.layer))
+      set_message("view " + std::string(kLayerNames[static_cast<size_t>(*view.layer)]) +
+                      " is not rendered with these passes and reuse settings",
+                  true);
+  }
+
+  void record_frame_time(Clock::time_point frame_start) {
+    const double seconds = seconds_between(frame_start, Clock::now());
+    frame_seconds_ = frame_seconds_ == 0.0 ? seconds : 0.9 * frame_seconds_ + 0.1 * seconds;
+    panel_.display_fps = frame_seconds_ > 0.0 ? 1.0 / frame_seconds_ : 0.0;
+  }
+
+  /// Without a working vsync (Xvfb, some drivers) the loop would spin; cap it at the monitor's refresh rate.
+  void pace(Clock::time_point frame_start) const {
+    const GLFWvidmode* mode = glfwGetVideoMode(glfwGetPrimaryMonitor());
+    const double refresh = mode && mode->refreshRate > 0 ? mode->refreshRate : 60.0;
+    const double left = 1.0 / refresh - seconds_between(frame_start, Clock::now());
+    if (left > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(left));
+  }
+
+  void write_state_file() const {
+    nlohmann::json state;
+    state["view"] = nlohmann::json::parse(view_to_json(panel_.view));
+    const TracerStats stats = tracer_.stats();
+    state["frames"] = stats.frames;
+    state["generation"] = tracer_.generation();
+    state["shown_frames"] = shown_.film.frames;
+    state["shown_generation"] = shown_.generation;
+    state["display_frames"] = display_frames_;
+    state["display_fps"] = panel_.display_fps;
+    state["last_frame_seconds"] = stats.last_frame_seconds;
+    state["paused"] = panel_.paused;
+    state["scene"] = panel_.scene_name;
+    state["triangles"] = panel_.triangles;
+    state["loading"] = loading_ != nullptr;
+    state["message"] = panel_.message;
+    state["message_is_error"] = panel_.message_is_error;
+    nlohmann::json widgets;
+    for (const auto& [name, rect] : panel_.widget_rects) widgets[name] = rect;
+    state["widgets"] = widgets;
+    try {
+      write_file_atomically(options_.state_file, state.dump(2));
+    } catch (const IoError&) {
+      // A test harness reading the file must never take the window down.
+    }
+  }
+
+  const AppOptions& options_;
+  GLFWwindow* window_;
+  const GlApi& gl_;
+  DisplayPipeline pipeline_;
+  ProgressiveTracer tracer_;
+  PanelModel panel_;
+  OpenedScene scene_;
+  std::string scene_path_;
+  CameraSpec home_camera_;
+  std::unique_ptr<SceneLoading> loading_;
+  bool loading_is_initial_ = false, reloading_same_scene_ = false;
+  TracerSnapshot shown_;
+  uint64_t display_frames_ = 0;
+  double frame_seconds_ = 0.0;
+  double last_cursor_x_ = 0.0, last_cursor_y_ = 0.0, last_key_time_ = 0.0;
+  bool dragging_ = false, f_was_down_ = false, r_was_down_ = false;
+};
+
+GlProc glfw_get_proc(const char* name) { return reinterpret_cast<GlProc>(glfwGetProcAddress(name)); }
+
+}  // namespace
+
+int run_viewer(const AppOptions& options) {
+  if (!glfwInit())
+    throw std::runtime_error("cannot open a window (no display?): render to a file with --headless --out FILE");
+  struct GlfwTerminate {
+    ~GlfwTerminate() { glfwTerminate(); }
+  } terminate;
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(options.render.width, options.render.height, "Lueur", nullptr, nullptr);
+  if (!window) throw std::runtime_error("cannot create an OpenGL 3.3 core window");
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(1);
+
+  InputEvents events;
+  glfwSetWindowUserPointer(window, &events);
+  // Installed before ImGui's, which chains to them.
+  glfwSetScrollCallback(window, [](GLFWwindow* w, double, double y) { events_of(w).scroll += y; });
+  glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
+    for (int i = 0; i < count; ++i) events_of(w).dropped.emplace_back(paths[i]);
+  });
+
+  const GlApi gl = load_gl_api(glfw_get_proc);
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // the panel's layout is Lueur's, not a file in the working directory
+  ImGui_ImplGlfw_InitForOpenGL(window, true);
+  init_imgui_opengl(glfw_get_proc);
+  {
+    Viewer viewer(options, window, gl);
+    viewer.run();
+  }
+  shutdown_imgui_opengl();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  glfwDestroyWindow(window);
+  return 0;
+}
+
+}  // namespace lueur

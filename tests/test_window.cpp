@@ -1,0 +1,169 @@
+// The real window under Xvfb, driven with synthetic input from xdotool: a pass checkbox, a weight slider and a
+// camera drag, each checked against the state the viewer reports (--state-file), and the display's frame rate
+// while the tracer is busy. CTest runs this executable inside xvfb-run (see tests/CMakeLists.txt).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "test_support.h"
+
+namespace lueur {
+namespace {
+
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+std::string run_command(const std::string& command) {
+  std::string output;
+  if (FILE* pipe = ::popen(command.c_str(), "r")) {
+    char buffer[256];
+    while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
+    ::pclose(pipe);
+  }
+  while (!output.empty() && (output.back() == '\n' || output.back() == ' ')) output.pop_back();
+  return output;
+}
+
+class Window : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!std::getenv("DISPLAY")) GTEST_FAIL() << "no DISPLAY: CTest runs this test inside xvfb-run";
+    ASSERT_FALSE(run_command("command -v xdotool").empty()) << "xdotool is missing (scripts/setup.sh installs it)";
+    dir_ = test::make_temp_dir("window");
+    state_path_ = dir_ + "/state.json";
+    pid_ = ::fork();
+    ASSERT_GE(pid_, 0);
+    if (pid_ == 0) {
+      // Heavy frames (16 L2 rays at 512x512 on a small machine) so that the display must not wait for them.
+      ::execl(LUEUR_EXECUTABLE, LUEUR_EXECUTABLE, "--size", "512x512", "--l1-rays", "4", "--l2-rays", "16",
+              "--state-file", state_path_.c_str(), static_cast<char*>(nullptr));
+      std::_Exit(127);
+    }
+    ASSERT_TRUE(wait_for([](const json& s) { return s["frames"].get<int>() >= 1; }, 120.0))
+        << "the viewer never rendered a frame";
+    window_ = run_command("xdotool search --sync --onlyvisible --name '^Lueur$' | head -1");
+    ASSERT_FALSE(window_.empty()) << "no window named Lueur";
+  }
+
+  void TearDown() override {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGTERM);
+      int status = 0;
+      ::waitpid(pid_, &status, 0);
+    }
+  }
+
+  json state() const {
+    std::ifstream in(state_path_);
+    std::stringstream text;
+    text << in.rdbuf();
+    json s = json::parse(text.str(), nullptr, false);
+    return s.is_discarded() ? json() : s;
+  }
+
+  bool wait_for(const std::function<bool(const json&)>& condition, double seconds) const {
+    const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+    while (Clock::now() < end) {
+      const json s = state();
+      if (s.is_object() && condition(s)) return true;
+      int status = 0;
+      if (::waitpid(pid_, &status, WNOHANG) == pid_) {
+        ADD_FAILURE() << "the viewer exited (status " << status << ")";
+        return false;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    return false;
+  }
+
+  /// Centre of a widget the viewer reports, in window pixels.
+  std::pair<int, int> centre_of(const std::string& widget) const {
+    const json r = state()["widgets"][widget];
+    return {static_cast<int>((r[0].get<float>() + r[2].get<float>()) / 2),
+            static_cast<int>((r[1].get<float>() + r[3].get<float>()) / 2)};
+  }
+
+  void xdotool(const std::string& arguments) const { run_command("xdotool " + arguments); }
+
+  void drag(int x0, int y0, int x1, int y1) const {
+    xdotool("mousemove --window " + window_ + " " + std::to_string(x0) + " " + std::to_string(y0) + " mousedown 1");
+    for (int step = 1; step <= 8; ++step) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(40));
+      xdotool("mousemove --window " + window_ + " " + std::to_string(x0 + (x1 - x0) * step / 8) + " " +
+              std::to_string(y0 + (y1 - y0) * step / 8));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(60));
+    xdotool("mouseup 1");
+  }
+
+  std::string dir_, state_path_, window_;
+  pid_t pid_ = -1;
+};
+
+bool has_pass(const json& s, const std::string& pass) {
+  for (const json& p : s["view"]["passes"])
+    if (p.get<std::string>() == pass) return true;
+  return false;
+}
+
+TEST_F(Window, SyntheticInputDrivesThePanelAndTheCamera) {
+  // A pass checkbox: L2 turns off and the accumulation restarts.
+  uint64_t generation = state()["generation"].get<uint64_t>();
+  ASSERT_TRUE(has_pass(state(), "l2"));
+  const auto [cx, cy] = centre_of("pass-l2");
+  xdotool("mousemove --window " + window_ + " " + std::to_string(cx) + " " + std::to_string(cy) + " click 1");
+  ASSERT_TRUE(
+      wait_for([&](const json& s) { return !has_pass(s, "l2") && s["generation"].get<uint64_t>() > generation; }, 10.0))
+      << "clicking the L2 checkbox did not turn L2 off";
+
+  // A weight slider: the weight changes live and nothing restarts.
+  ASSERT_TRUE(wait_for([](const json& s) { return s["frames"].get<int>() >= 1; }, 60.0));
+  generation = state()["generation"].get<uint64_t>();
+  const float weight = state()["view"]["weights"]["l1"].get<float>();
+  const auto [wx, wy] = centre_of("weight-l1");
+  drag(wx, wy, wx + 40, wy);
+  ASSERT_TRUE(wait_for([&](const json& s) { return s["view"]["weights"]["l1"].get<float>() > weight + 0.05f; }, 10.0))
+      << "dragging the L1 weight slider did not raise the weight";
+  EXPECT_EQ(state()["generation"].get<uint64_t>(), generation) << "a weight change must not restart the tracer";
+
+  // A camera drag in the image, right of the panel: the eye moves and the accumulation restarts.
+  const std::vector<float> eye = state()["view"]["camera"]["eye"].get<std::vector<float>>();
+  const int panel_right = static_cast<int>(state()["widgets"]["panel"][2].get<float>());
+  drag(panel_right + 60, 300, panel_right + 120, 320);
+  ASSERT_TRUE(wait_for(
+      [&](const json& s) {
+        return s["view"]["camera"]["eye"].get<std::vector<float>>() != eye &&
+               s["generation"].get<uint64_t>() > generation;
+      },
+      10.0))
+      << "dragging in the image did not move the camera";
+
+  // Resizing re-renders at the new size.
+  xdotool("windowsize " + window_ + " 320 240");
+  EXPECT_TRUE(
+      wait_for([](const json& s) { return s["view"]["width"] == 320 && s["shown_frames"].get<int>() >= 0; }, 10.0))
+      << "the render size did not follow the window";
+}
+
+TEST_F(Window, KeepsDrawingWhileTheTracerWorks) {
+  const json before = state();
+  std::this_thread::sleep_for(std::chrono::seconds(3));
+  const json after = state();
+  const double display_frames = after["display_frames"].get<double>() - before["display_frames"].get<double>();
+  const double traced_frames = after["frames"].get<double>() - before["frames"].get<double>();
+  EXPECT_GT(after["last_frame_seconds"].get<double>(), 0.1) << "the tracer's frames should be slow here";
+  EXPECT_GT(display_frames, 30.0) << "the window drew only " << display_frames << " frames in 3 s";
+  EXPECT_GT(display_frames, 5.0 * std::max(traced_frames, 1.0)) << "the display waits for the tracer";
+}
+
+}  // namespace
+}  // namespace lueur
