@@ -10,6 +10,8 @@ LUEUR_PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libglm-dev libtinyobjloader-dev libstb-dev libtinyexr-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev
+  libglfw3-dev libimgui-dev libgl-dev libegl-dev libosmesa6-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0
+  xvfb xauth xdotool
 )
 
 lueur_install_packages() {
