@@ -15,7 +15,7 @@
 #include <thread>
 #include <vector>
 
-#include "app/camera_controls.h"
+#include "render/camera_controls.h"
 #include "app/scene_loading.h"
 #include "core/atomic_file.h"
 #include "display/display_pipeline.h"

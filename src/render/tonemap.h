@@ -16,6 +16,7 @@ inline constexpr std::array<std::string_view, 3> kToneMapNames = {"none", "reinh
 struct DisplaySettings {
   float exposure = 0.0f;  ///< in stops: the linear image is scaled by 2^exposure
   ToneMap tonemap = ToneMap::kNone;
+  bool operator==(const DisplaySettings&) const = default;
 };
 
 /// Krzysztof Narkowicz's fit of the ACES filmic curve.
