@@ -6,6 +6,7 @@
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -92,6 +93,10 @@ class Viewer {
       glfwSwapBuffers(window_);
       ++display_frames_;
       record_frame_time(frame_start);
+      if (restart_shown_) {
+        restart_latencies_ms_.push_back(1e3 * seconds_between(restart_time_, Clock::now()));
+        restart_shown_ = false;
+      }
       if (!options_.state_file.empty() && seconds_between(last_state_write, Clock::now()) > 0.1) {
         write_state_file();
         last_state_write = Clock::now();
@@ -295,8 +300,15 @@ class Viewer {
       panel_.view.render.width = w;
       panel_.view.render.height = h;
     }
+    const uint64_t generation = tracer_.generation();
     tracer_.set_settings(panel_.view.render);
     if (panel_.view.camera) tracer_.set_camera(*panel_.view.camera);
+    if (tracer_.generation() != generation) {
+      // Latency is measured from the first change not yet on screen, as a user dragging would feel it.
+      if (!restart_pending_) restart_time_ = Clock::now();
+      restart_pending_ = true;
+      awaited_generation_ = tracer_.generation();
+    }
     tracer_.set_paused(panel_.paused);
     tracer_.set_frame_limit(panel_.view.frame_limit);
   }
@@ -305,6 +317,10 @@ class Viewer {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
     if (tracer_.take_snapshot(shown_)) {
+      if (restart_pending_ && shown_.generation >= awaited_generation_) {
+        restart_pending_ = false;
+        restart_shown_ = true;
+      }
       panel_.film_width = shown_.film.width;
       panel_.film_height = shown_.film.height;
       panel_.preview_divisor = shown_.preview_divisor;
@@ -323,6 +339,12 @@ class Viewer {
   }
 
   void record_frame_time(Clock::time_point frame_start) {
+    if (previous_frame_start_ != Clock::time_point{}) {
+      // The interval between frames, as the user sees it (pacing included), over the last 600 frames.
+      if (frame_intervals_ms_.size() == 600) frame_intervals_ms_.erase(frame_intervals_ms_.begin());
+      frame_intervals_ms_.push_back(1e3 * seconds_between(previous_frame_start_, frame_start));
+    }
+    previous_frame_start_ = frame_start;
     const double seconds = seconds_between(frame_start, Clock::now());
     frame_seconds_ = frame_seconds_ == 0.0 ? seconds : 0.9 * frame_seconds_ + 0.1 * seconds;
     panel_.display_fps = frame_seconds_ > 0.0 ? 1.0 / frame_seconds_ : 0.0;
@@ -346,6 +368,12 @@ class Viewer {
     state["shown_generation"] = shown_.generation;
     state["display_frames"] = display_frames_;
     state["display_fps"] = panel_.display_fps;
+    if (!frame_intervals_ms_.empty()) {
+      std::vector<double> sorted = frame_intervals_ms_;
+      std::sort(sorted.begin(), sorted.end());
+      state["frame_interval_ms"] = {{"median", sorted[sorted.size() / 2]}, {"worst", sorted.back()}};
+    }
+    state["restart_latency_ms"] = restart_latencies_ms_;
     state["last_frame_seconds"] = stats.last_frame_seconds;
     state["paused"] = panel_.paused;
     state["scene"] = panel_.scene_name;
@@ -379,6 +407,11 @@ class Viewer {
   double frame_seconds_ = 0.0;
   double last_cursor_x_ = 0.0, last_cursor_y_ = 0.0, last_key_time_ = 0.0;
   bool dragging_ = false, f_was_down_ = false, r_was_down_ = false;
+  // Figures for the state file: display frame intervals and the time from a change to its first frame on screen.
+  std::vector<double> frame_intervals_ms_, restart_latencies_ms_;
+  Clock::time_point previous_frame_start_{}, restart_time_{};
+  uint64_t awaited_generation_ = 0;
+  bool restart_pending_ = false, restart_shown_ = false;
 };
 
 GlProc glfw_get_proc(const char* name) { return reinterpret_cast<GlProc>(glfwGetProcAddress(name)); }
