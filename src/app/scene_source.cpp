@@ -5,7 +5,7 @@
 
 namespace lueur {
 
-OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect) {
+OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect, AccelKind accel) {
   OpenedScene opened;
   Scene scene;
   if (path.empty()) {
@@ -21,7 +21,7 @@ OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspec
     opened.warnings = std::move(loaded.warnings);
     opened.default_view = frame_box(scene.bounds(), 45.0f, aspect);
   }
-  opened.traced = prepare_scene(std::move(scene));
+  opened.traced = prepare_scene(std::move(scene), accel);
   return opened;
 }
 

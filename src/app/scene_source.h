@@ -16,8 +16,9 @@ struct OpenedScene {
   std::vector<std::string> warnings;
 };
 
-/// Loads (or builds) the scene, applies the normal-smoothing option and prepares it for tracing.
-/// Throws SceneError for a scene that cannot be used.
-OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect);
+/// Loads (or builds) the scene, applies the normal-smoothing option and prepares it for tracing with `accel`.
+/// Throws SceneError for a scene that cannot be used, AccelError for an accelerator this build lacks.
+OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect,
+                       AccelKind accel = AccelKind::kLueur);
 
 }  // namespace lueur
