@@ -13,6 +13,9 @@ struct CommandResult {
   std::string output;  ///< stdout and stderr together
 };
 
+/// Runs `executable` with the given argument string through the shell.
+CommandResult run_program(const std::string& executable, const std::string& arguments);
+
 /// Runs `lueur` (the built executable) with the given argument string through the shell.
 CommandResult run_lueur(const std::string& arguments);
 
@@ -24,10 +27,10 @@ std::string shared_scene(const std::string& relative);
 
 }  // namespace lueur::test
 
+#include <gtest/gtest.h>
+
 #include "render/settings.h"
 #include "scene/scene.h"
-
-#include <gtest/gtest.h>
 
 namespace lueur::test {
 
