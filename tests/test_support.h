@@ -27,10 +27,10 @@ std::string shared_scene(const std::string& relative);
 
 }  // namespace lueur::test
 
-#include <gtest/gtest.h>
-
 #include "render/settings.h"
 #include "scene/scene.h"
+
+#include <gtest/gtest.h>
 
 namespace lueur::test {
 
