@@ -15,7 +15,7 @@ Accelerator build_accelerator(const std::vector<Vec3>& corners, AccelKind kind) 
 
 size_t accelerator_bytes(const Accelerator& accel) {
   if (accel.kind == AccelKind::kEmbree) return accel.embree ? embree_bytes(*accel.embree) : 0;
-  return accel.bvh.nodes.size() * sizeof(BvhNode) + accel.bvh.triangles.size() * sizeof(BvhTriangle);
+  return accel.bvh.traversal_bytes();
 }
 
 }  // namespace lueur

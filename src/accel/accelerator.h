@@ -22,7 +22,8 @@ struct Accelerator {
 /// the input index. Throws AccelError for Embree in a build without it.
 Accelerator build_accelerator(const std::vector<Vec3>& corners, AccelKind kind);
 
-/// Bytes the structure holds (Lueur: nodes and triangles; Embree: what its memory monitor reports).
+/// Bytes the structure's queries read (Lueur: wide nodes and triangle groups; Embree: what its memory monitor
+/// reports).
 size_t accelerator_bytes(const Accelerator& accel);
 
 /// Closest hit with t in (ray.tmin, ray.tmax); both back-ends give the same Hit for a hit on the same triangle.

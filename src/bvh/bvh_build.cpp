@@ -217,6 +217,7 @@ Bvh build_bvh(const std::vector<Vec3>& corners) {
 
   bvh.triangles.reserve(prims.size());
   for (const PrimRef& p : prims) bvh.triangles.push_back(prepared[p.index]);
+  build_wide_bvh(bvh);
   return bvh;
 }
 
