@@ -12,9 +12,13 @@ namespace {
 
 // 32 bins keep the split quality close to a full sweep while a node costs one pass over its triangles.
 constexpr int kBinCount = 32;
-// Relative costs of visiting an inner node (two box tests) and of one triangle test, in the SAH.
+// Relative costs of visiting an inner node and of testing one group of kBvhWidth triangles (one SIMD test: the
+// leaves are packed in such groups, so 1 or 4 triangles cost the same), in the SAH.
 constexpr float kTraversalCost = 1.0f;
 constexpr float kIntersectionCost = 1.0f;
+
+/// Triangle groups a leaf of `count` triangles takes: the unit of the SAH's leaf cost.
+inline float group_cost(uint32_t count) { return static_cast<float>((count + kBvhWidth - 1) / kBvhWidth); }
 // From this depth on nodes are split by object median only. Median splits halve the count, so leaves are
 // reached within 32 more levels even for 2^32 triangles, which keeps every node shallower than kBvhMaxDepth.
 constexpr uint32_t kSahDepthLimit = kBvhMaxDepth - 32;
@@ -51,7 +55,7 @@ int bin_of(float c, float lo, float scale) {
   return f > 0.0f ? static_cast<int>(f) : 0;
 }
 
-/// Best binned-SAH split of prims[begin, end) over all three axes; cost is sum(area * count) of the two sides.
+/// Best binned-SAH split of prims[begin, end) over all three axes; cost is sum(area * groups) of the two sides.
 Split find_sah_split(const std::vector<PrimRef>& prims, uint32_t begin, uint32_t end, const Box3& centroids) {
   std::array<std::array<Bin, kBinCount>, 3> bins{};
   std::array<float, 3> scale{};
@@ -83,7 +87,7 @@ Split find_sah_split(const std::vector<PrimRef>& prims, uint32_t begin, uint32_t
     for (int k = kBinCount - 1; k > 0; --k) {
       right.expand(bins[axis][k].box);
       count += bins[axis][k].count;
-      right_cost[k] = right.area() * static_cast<float>(count);
+      right_cost[k] = right.area() * group_cost(count);
       right_count[k] = count;
     }
     Box3 left;
@@ -92,7 +96,7 @@ Split find_sah_split(const std::vector<PrimRef>& prims, uint32_t begin, uint32_t
       left.expand(bins[axis][k - 1].box);
       count += bins[axis][k - 1].count;
       if (count == 0 || right_count[k] == 0) continue;
-      const float cost = left.area() * static_cast<float>(count) + right_cost[k];
+      const float cost = left.area() * group_cost(count) + right_cost[k];
       if (cost < best.cost) best = Split{axis, k, cost};  // NaN or infinite costs (overflowing boxes) never win
     }
   }
@@ -177,7 +181,7 @@ Bvh build_bvh(const std::vector<Vec3>& corners) {
       if (task.depth < kSahDepthLimit) {
         const Split s = find_sah_split(prims, task.begin, task.end, centroids);
         const float area = box.area();
-        const float leaf_cost = kIntersectionCost * static_cast<float>(count) * area;
+        const float leaf_cost = kIntersectionCost * group_cost(count) * area;
         const float split_cost = kTraversalCost * area + kIntersectionCost * s.cost;
         if (s.axis >= 0 && (count > kBvhMaxLeafSize || split_cost < leaf_cost)) {
           const int axis = s.axis;
