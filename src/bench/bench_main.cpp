@@ -25,6 +25,8 @@ struct BenchOptions {
   bool quick = false;
   bool smoke = false;
   std::string json_path;
+  std::string only;  ///< when set: only the scenes whose name contains it
+  int rounds = 0;    ///< when set: alternating timing rounds
   std::string scenes_dir = LUEUR_SHARED_SCENES;
   std::set<std::string> sections = {"build", "throughput", "convergence"};
   int ray_size = 512;  ///< rays are generated for a ray_size x ray_size view
@@ -46,6 +48,9 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
   app.add_flag("--smoke", o.smoke, "a tiny run that only checks the plumbing (seconds; for the test suite)");
   app.add_option("--json", o.json_path, "write every figure to FILE as JSON");
   app.add_option("--scenes", o.scenes_dir, "folder of the shared scenes (default: ../shared/scenes of the source)");
+  app.add_option("--only", o.only, "only the scenes whose name contains this text");
+  app.add_option("--rounds", o.rounds, "alternating timing rounds per figure (default 3; the best is kept)")
+      ->check(CLI::Range(1, 1000));
   app.add_option("--sections", sections, "comma-separated: build,throughput,convergence (default all)");
   app.add_option("--reference-frames", reference_frames, "frames of each convergence reference (default 128)")
       ->check(CLI::Range(1, 100000));
@@ -84,6 +89,7 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
     o.convergence = {16, 16, 2, 0.001, 0, 1};
     o.scenes_dir.clear();
   }
+  if (o.rounds > 0) o.timing.rounds = o.rounds;
   if (reference_frames > 0) o.convergence.reference_frames = reference_frames;
   if (convergence_seconds > 0.0) o.convergence.seconds = convergence_seconds;
   if (convergence_size > 0) o.convergence.width = o.convergence.height = convergence_size;
@@ -118,6 +124,8 @@ int run(const BenchOptions& o) {
     std::vector<std::string> skipped;
     std::vector<BenchScene> scenes = load_bench_scenes(o.quick || o.smoke, o.scenes_dir, skipped);
     if (o.smoke) scenes.back() = make_sphere_field(4, 7);
+    if (!o.only.empty())
+      std::erase_if(scenes, [&](const BenchScene& b) { return b.name.find(o.only) == std::string::npos; });
     for (const std::string& s : skipped) std::fprintf(stderr, "lueur-bench: skipped %s\n", s.c_str());
     ThreadPool one(1), all(0);
     std::vector<ThreadPool*> pools = {&one};
