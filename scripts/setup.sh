@@ -9,7 +9,7 @@ LUEUR_BUILD="${LUEUR_BUILD:-$LUEUR_ROOT/build}"
 LUEUR_PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libglm-dev libtinyobjloader-dev libstb-dev libtinyexr-dev libcli11-dev nlohmann-json3-dev
-  libgtest-dev
+  libgtest-dev libembree-dev
   libglfw3-dev libimgui-dev libgl-dev libegl-dev libosmesa6-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0
   xvfb xauth xdotool
 )

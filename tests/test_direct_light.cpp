@@ -65,7 +65,7 @@ TEST_P(ClosedBox, DirectLightIsRhoTimesLeAtEveryPixel) {
     for (int y = 0; y < 12; ++y)
       for (int x = 0; x < 12; ++x) {
         const Ray ray = camera_ray(camera, x + 0.5f, y + 0.5f);
-        const Hit hit = intersect_closest(traced->bvh, ray);
+        const Hit hit = intersect_closest(traced->accel, ray);
         ASSERT_TRUE(hit.found());
         const SurfacePoint sp = make_surface_point(traced->scene, ray, hit);
         ASSERT_TRUE(sp.front_face);
@@ -130,7 +130,7 @@ TEST(DirectLight, MatchesLambertPolygonFormulaUnderARectangularLight) {
       Ray ray;
       ray.origin = p + Vec3(0.0f, 0.5f, 0.0f);
       ray.dir = Vec3(0.0f, -1.0f, 0.0f);
-      const Hit hit = intersect_closest(traced->bvh, ray);
+      const Hit hit = intersect_closest(traced->accel, ray);
       ASSERT_TRUE(hit.found());
       const SurfacePoint sp = make_surface_point(traced->scene, ray, hit);
       DirectLightOptions options;

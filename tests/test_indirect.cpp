@@ -83,7 +83,7 @@ TEST(AmbientOcclusion, IsAlbedoWithNothingWithinTheRadius) {
   Ray ray;
   ray.origin = Vec3(2.0f, 1.0f, 0.0f);
   ray.dir = Vec3(0.0f, -1.0f, 0.0f);
-  const SurfacePoint sp = make_surface_point(traced->scene, ray, intersect_closest(traced->bvh, ray));
+  const SurfacePoint sp = make_surface_point(traced->scene, ray, intersect_closest(traced->accel, ray));
   Pcg32 rng(1, 2);
   uint64_t rays = 0;
   const Vec3 ao = estimate_ambient_occlusion(*traced, sp, 4096, 4.0f, rng, rays);
@@ -99,7 +99,7 @@ TEST(AmbientOcclusion, UnderACeilingIsAlbedoTimesHOverRSquared) {
   Ray ray;
   ray.origin = Vec3(0.0f, 0.5f, 0.0f);
   ray.dir = Vec3(0.0f, -1.0f, 0.0f);
-  const SurfacePoint sp = make_surface_point(traced->scene, ray, intersect_closest(traced->bvh, ray));
+  const SurfacePoint sp = make_surface_point(traced->scene, ray, intersect_closest(traced->accel, ray));
   Pcg32 rng(3, 4);
   uint64_t rays = 0;
   constexpr int kRays = 200000;
@@ -143,7 +143,7 @@ TEST(ReuseModes, AgreeWithinNoiseOnDiffuseSurfaces) {
       int pixels = 0;
       for (int y = by * kBlock; y < (by + 1) * kBlock; ++y)
         for (int x = bx * kBlock; x < (bx + 1) * kBlock; ++x) {
-          const Hit hit = intersect_closest(traced->bvh, camera_ray(camera, x + 0.5f, y + 0.5f));
+          const Hit hit = intersect_closest(traced->accel, camera_ray(camera, x + 0.5f, y + 0.5f));
           if (!hit.found() || traced->scene.material_of(hit.triangle).has_specular()) continue;
           const size_t i = static_cast<size_t>(y * kSize + x);
           for (size_t m = 0; m < 3; ++m) {
@@ -169,7 +169,7 @@ TEST(ReuseModes, ReuseHappensWhereTheCameraSeesQAndNeverBehindTheBlocks) {
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const Ray ray = camera_ray(camera, x + 0.5f, y + 0.5f);
-      const Hit hit = intersect_closest(traced->bvh, ray);
+      const Hit hit = intersect_closest(traced->accel, ray);
       if (!hit.found()) continue;
       const size_t i = static_cast<size_t>(y * w + x);
       screen.triangle[i] = hit.triangle;
@@ -191,7 +191,7 @@ TEST(ReuseModes, ReuseHappensWhereTheCameraSeesQAndNeverBehindTheBlocks) {
     to_q.origin = camera.eye;
     to_q.dir = q - camera.eye;
     to_q.tmax = 1.0f + 1e-3f;
-    const Hit first = intersect_closest(traced->bvh, to_q);
+    const Hit first = intersect_closest(traced->accel, to_q);
     float px = 0, py = 0;
     if (!project_to_pixel(camera, q, px, py)) continue;
     const bool seen = first.found() && first.triangle == tri && first.t > 0.999f;

@@ -20,9 +20,15 @@ std::string make_temp_dir(const std::string& tag) {
   return base.string();
 }
 
-CommandResult run_lueur(const std::string& arguments) {
+CommandResult run_lueur(const std::string& arguments) { return run_program(LUEUR_EXECUTABLE, arguments); }
+
+CommandResult run_program(const std::string& executable, const std::string& arguments) {
   CommandResult result;
-  const std::string command = std::string("'") + LUEUR_EXECUTABLE + "' " + arguments + " 2>&1";
+  std::string command = "'";
+  command += executable;
+  command += "' ";
+  command += arguments;
+  command += " 2>&1";
   FILE* pipe = ::popen(command.c_str(), "r");
   if (!pipe) return result;
   char buffer[4096];

@@ -13,6 +13,9 @@ struct CommandResult {
   std::string output;  ///< stdout and stderr together
 };
 
+/// Runs `executable` with the given argument string through the shell.
+CommandResult run_program(const std::string& executable, const std::string& arguments);
+
 /// Runs `lueur` (the built executable) with the given argument string through the shell.
 CommandResult run_lueur(const std::string& arguments);
 

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <vector>
 
+#include "accel/embree_backend.h"
 #include "app/options.h"
 
 namespace lueur {
@@ -130,7 +131,7 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv) {
   AppOptions o;
   CLI::App app{"Lueur: a progressive CPU ray tracer of direct (L1) and one-bounce indirect (L2) light", "lueur"};
   app.set_version_flag("--version", "lueur 0.1.0");
-  std::string size, camera, up, passes, weights, lights, smooth, tonemap, reuse, view, gl;
+  std::string size, camera, up, passes, weights, lights, smooth, tonemap, reuse, view, gl, accel;
   app.add_option("scene", o.scene_path, "OBJ scene (default: the embedded Cornell box with an apple)");
   app.add_flag("--headless", o.headless, "render to a file instead of opening a window");
   app.add_option("--out", o.out_path, "output image: .png (tone-mapped sRGB), .pfm (linear), .exr (linear, per pass)");
@@ -161,6 +162,7 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv) {
                  "reuse-fraction|l1-diffuse");
   app.add_option("--smooth-normals", smooth, "on|off: compute smooth normals for files without them (default on)");
   app.add_option("--seed", o.render.seed, "random seed (default 0)");
+  app.add_option("--accel", accel, "acceleration structure: lueur|embree (default lueur)");
   app.add_option("--threads", o.threads, "worker threads (default: all cores)")->check(CLI::Range(0, 1024));
   app.add_option("--exposure", o.display.exposure, "exposure in stops (default 0)")->check(CLI::Range(-30.0f, 30.0f));
   app.add_option("--tonemap", tonemap, "none|reinhard|aces (default none)");
@@ -196,6 +198,9 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv) {
   if (!weights.empty()) parse_weights(weights, o.weights);
   if (!lights.empty()) o.render.lights = parse_enum<LightStrategy>("--lights", kLightStrategyNames, lights);
   if (!reuse.empty()) o.render.reuse = parse_enum<ReuseMode>("--reuse", kReuseModeNames, reuse);
+  if (!accel.empty()) o.accel = parse_enum<AccelKind>("--accel", kAccelKindNames, accel);
+  if (o.accel == AccelKind::kEmbree && !embree_available())
+    throw UsageError("--accel embree: this build has no Embree (install libembree-dev and rebuild)");
   if (!view.empty() && view != "combined") o.view = parse_enum<Layer>("--view", kLayerNames, view);
   if (!tonemap.empty()) o.display.tonemap = parse_enum<ToneMap>("--tonemap", kToneMapNames, tonemap);
   if (smooth == "on")
@@ -249,7 +254,9 @@ std::string describe_options(const AppOptions& o) {
     << " --ao-rays " << o.render.ao_rays;
   if (o.render.ao_radius > 0.0f) s << " --ao-radius " << o.render.ao_radius;
   if (o.view) s << " --view " << enum_name(kLayerNames, *o.view);
-  s << " --blinn-k " << o.render.blinn_k << " --smooth-normals " << (o.smooth_normals ? "on" : "off") << " --seed "
+  if (o.accel != AccelKind::kLueur) s << " --accel " << enum_name(kAccelKindNames, o.accel);
+  s
+    << " --blinn-k " << o.render.blinn_k << " --smooth-normals " << (o.smooth_normals ? "on" : "off") << " --seed "
     << o.render.seed << " --exposure " << o.display.exposure << " --tonemap "
     << enum_name(kToneMapNames, o.display.tonemap);
   if (o.camera)

@@ -82,7 +82,7 @@ int run_headless(const AppOptions& options) {
   check_output_path(options.out_path);
   const RenderSettings& settings = options.render;
   const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
-  const OpenedScene opened = open_scene(options.scene_path, options.smooth_normals, aspect);
+  const OpenedScene opened = open_scene(options.scene_path, options.smooth_normals, aspect, options.accel);
   for (const std::string& w : opened.warnings) std::fprintf(stderr, "lueur: warning: %s\n", w.c_str());
 
   CameraSpec view = options.camera.value_or(opened.default_view);
@@ -96,9 +96,10 @@ int run_headless(const AppOptions& options) {
                      ": that layer is not rendered with these --passes/--reuse settings");
   ThreadPool pool(options.threads);
   const TracedScene& traced = *opened.traced;
-  std::fprintf(stderr, "lueur: %s, %zu triangles, %zu emitters, %dx%d, %d frames, %d threads\n",
+  std::fprintf(stderr, "lueur: %s, %zu triangles, %zu emitters, %dx%d, %d frames, %d threads, accel %s\n",
                traced.scene.name.c_str(), traced.scene.triangles.size(), traced.lights.size(), settings.width,
-               settings.height, options.frames, pool.thread_count());
+               settings.height, options.frames, pool.thread_count(),
+               std::string(enum_name(kAccelKindNames, options.accel)).c_str());
 
   const Clock::time_point start = Clock::now();
   Clock::time_point last_progress = start;

@@ -26,6 +26,7 @@ struct AppOptions {
   int frames = 64;
   int threads = 0;  ///< 0: every hardware thread
   bool smooth_normals = true;
+  AccelKind accel = AccelKind::kLueur;  ///< which acceleration structure traces the rays
   RenderSettings render;
   std::array<float, kPassCount> weights = kReportWeights;
   DisplaySettings display;

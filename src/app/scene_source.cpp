@@ -5,7 +5,7 @@
 
 namespace lueur {
 
-OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect,
+OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect, AccelKind accel,
                        const std::function<void(const std::string& stage)>& on_stage) {
   const auto stage = [&](const std::string& what) {
     if (on_stage) on_stage(what);
@@ -27,7 +27,7 @@ OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspec
     opened.default_view = frame_box(scene.bounds(), 45.0f, aspect);
   }
   stage("building the BVH of " + std::to_string(scene.triangles.size()) + " triangles");
-  opened.traced = prepare_scene(std::move(scene));
+  opened.traced = prepare_scene(std::move(scene), accel);
   return opened;
 }
 

@@ -17,10 +17,10 @@ struct OpenedScene {
   std::vector<std::string> warnings;
 };
 
-/// Loads (or builds) the scene, applies the normal-smoothing option and prepares it for tracing.
-/// Throws SceneError for a scene that cannot be used.
+/// Loads (or builds) the scene, applies the normal-smoothing option and prepares it for tracing with `accel`.
+/// Throws SceneError for a scene that cannot be used, AccelError for an accelerator this build lacks.
 /// `on_stage`, when given, is told each step as it starts (the window shows it while loading in the background).
-OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect,
+OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect, AccelKind accel = AccelKind::kLueur,
                        const std::function<void(const std::string& stage)>& on_stage = {});
 
 }  // namespace lueur

@@ -2,6 +2,8 @@
 // The display never waits for the tracer: it only ever swaps in a finished snapshot.
 #include "app/viewer.h"
 
+#include "accel/embree_backend.h"
+
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
@@ -64,6 +66,7 @@ class Viewer {
       : options_(options), window_(window), gl_(gl), pipeline_(gl), tracer_(options.threads) {
     panel_.view = view_from_options(options);
     panel_.paused = false;
+    panel_.accel = options.accel;
     tracer_.set_frame_limit(panel_.view.frame_limit);
     start_loading(options.scene_path, true);
   }
@@ -112,7 +115,7 @@ class Viewer {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
     const float aspect = w > 0 && h > 0 ? static_cast<float>(w) / static_cast<float>(h) : 1.0f;
-    loading_ = std::make_unique<SceneLoading>(path, panel_.view.smooth_normals, aspect);
+    loading_ = std::make_unique<SceneLoading>(path, panel_.view.smooth_normals, aspect, panel_.accel);
     loading_is_initial_ = initial;
   }
 
@@ -227,7 +230,10 @@ class Viewer {
     if (scene_.traced && a.frame_scene && panel_.view.camera)
       panel_.view.camera = frame_bounds(*panel_.view.camera, scene_.traced->scene.bounds(), aspect());
     if (scene_.traced && a.reset_camera) panel_.view.camera = home_camera_;
-    if (a.smooth_normals_changed && !loading_) {
+    if (a.accel_changed && panel_.accel == AccelKind::kEmbree && !embree_available()) {
+      panel_.accel = AccelKind::kLueur;
+      set_message("this build has no Embree (install libembree-dev and rebuild)", true);
+    } else if ((a.smooth_normals_changed || a.accel_changed) && !loading_) {
       reloading_same_scene_ = true;
       start_loading(scene_path_, false);
     }

@@ -2,9 +2,9 @@
 // Depends on core only; knows triangles by their three vertex positions.
 #pragma once
 
-#include "core/ray.h"
-
 #include <vector>
+
+#include "core/ray.h"
 
 namespace lueur {
 
@@ -28,11 +28,43 @@ struct BvhTriangle {
   uint32_t id;  ///< index of the triangle in the input (scene) order
 };
 
-struct Bvh {
-  std::vector<BvhNode> nodes;          ///< nodes[0] is the root
-  std::vector<BvhTriangle> triangles;  ///< reordered once after the build so leaves read them directly
-  bool empty() const { return triangles.empty(); }
+/// Children per node of the traversal form, and triangles per leaf group: one SSE register of floats.
+inline constexpr uint32_t kBvhWidth = 4;
+
+/// A node of the traversal form: the boxes of up to four children structure-of-arrays (lo[axis][child]), so that
+/// one SSE slab test covers all four. An unused slot has NaN bounds, which no ray can enter.
+struct alignas(64) BvhWideNode {
+  float lo[3][kBvhWidth];
+  float hi[3][kBvhWidth];
+  uint32_t child[kBvhWidth];  ///< inner child: its node index; leaf: its first triangle group
+  uint32_t count[kBvhWidth];  ///< 0: inner child (or unused slot); n > 0: a leaf of n triangle groups
 };
+
+/// Four triangles structure-of-arrays (v0[axis][lane], ...), tested together. Unused lanes have zero edges (never
+/// hit) and id kNoHit.
+struct alignas(16) BvhTriangleGroup {
+  float v0[3][kBvhWidth];
+  float e1[3][kBvhWidth];
+  float e2[3][kBvhWidth];
+  uint32_t id[kBvhWidth];
+};
+
+struct Bvh {
+  std::vector<BvhNode> nodes;          ///< the binned-SAH BVH2; nodes[0] is the root
+  std::vector<BvhTriangle> triangles;  ///< reordered once after the build so leaves read them directly
+  /// What the queries traverse: the BVH2 collapsed into a 4-wide tree (wide_nodes[0] is the root) over leaves of
+  /// triangle groups. The BVH2 above is kept as the build's record (tests check its invariants).
+  std::vector<BvhWideNode> wide_nodes;
+  std::vector<BvhTriangleGroup> groups;
+  bool empty() const { return triangles.empty(); }
+  /// Bytes the queries read: the wide nodes and the triangle groups.
+  size_t traversal_bytes() const {
+    return wide_nodes.size() * sizeof(BvhWideNode) + groups.size() * sizeof(BvhTriangleGroup);
+  }
+};
+
+/// Collapses `bvh.nodes` into `bvh.wide_nodes` and `bvh.groups` (called by build_bvh).
+void build_wide_bvh(Bvh& bvh);
 
 /// Prepares triangle (a, b, c) for intersection: v0 = a, e1 = b - a, e2 = c - a. A zero-area triangle (edge cross
 /// product exactly zero: repeated or collinear vertices) gets zero edges, so its determinant is exactly 0 for every

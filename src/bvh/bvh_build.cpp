@@ -1,24 +1,32 @@
 // Builds Lueur's BVH: a binned-SAH BVH2 of 32-byte nodes over triangles, then lays the triangles out in leaf order.
 // Depends on core (math, ray, box) only; must not know about scenes, materials or rendering.
 
-#include "bvh/bvh.h"
-
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <stdexcept>
+#include <thread>
+
+#include "bvh/bvh.h"
 
 namespace lueur {
 namespace {
 
 // 32 bins keep the split quality close to a full sweep while a node costs one pass over its triangles.
 constexpr int kBinCount = 32;
-// Relative costs of visiting an inner node (two box tests) and of one triangle test, in the SAH.
+// Relative costs of visiting an inner node and of testing one group of kBvhWidth triangles (one SIMD test: the
+// leaves are packed in such groups, so 1 or 4 triangles cost the same), in the SAH.
 constexpr float kTraversalCost = 1.0f;
 constexpr float kIntersectionCost = 1.0f;
+
+/// Triangle groups a leaf of `count` triangles takes: the unit of the SAH's leaf cost.
+inline float group_cost(uint32_t count) { return static_cast<float>((count + kBvhWidth - 1) / kBvhWidth); }
 // From this depth on nodes are split by object median only. Median splits halve the count, so leaves are
 // reached within 32 more levels even for 2^32 triangles, which keeps every node shallower than kBvhMaxDepth.
 constexpr uint32_t kSahDepthLimit = kBvhMaxDepth - 32;
 static_assert(kBvhMaxLeafSize >= 1);
+// Subtrees this small (in triangles) are built in parallel once the top of the tree is done.
+constexpr uint32_t kParallelGrain = 4096;
 
 /// A triangle during the build: its box, the centre of that box (the binned position) and its index in `prepared`.
 struct PrimRef {
@@ -51,7 +59,7 @@ int bin_of(float c, float lo, float scale) {
   return f > 0.0f ? static_cast<int>(f) : 0;
 }
 
-/// Best binned-SAH split of prims[begin, end) over all three axes; cost is sum(area * count) of the two sides.
+/// Best binned-SAH split of prims[begin, end) over all three axes; cost is sum(area * groups) of the two sides.
 Split find_sah_split(const std::vector<PrimRef>& prims, uint32_t begin, uint32_t end, const Box3& centroids) {
   std::array<std::array<Bin, kBinCount>, 3> bins{};
   std::array<float, 3> scale{};
@@ -83,7 +91,7 @@ Split find_sah_split(const std::vector<PrimRef>& prims, uint32_t begin, uint32_t
     for (int k = kBinCount - 1; k > 0; --k) {
       right.expand(bins[axis][k].box);
       count += bins[axis][k].count;
-      right_cost[k] = right.area() * static_cast<float>(count);
+      right_cost[k] = right.area() * group_cost(count);
       right_count[k] = count;
     }
     Box3 left;
@@ -92,7 +100,7 @@ Split find_sah_split(const std::vector<PrimRef>& prims, uint32_t begin, uint32_t
       left.expand(bins[axis][k - 1].box);
       count += bins[axis][k - 1].count;
       if (count == 0 || right_count[k] == 0) continue;
-      const float cost = left.area() * static_cast<float>(count) + right_cost[k];
+      const float cost = left.area() * group_cost(count) + right_cost[k];
       if (cost < best.cost) best = Split{axis, k, cost};  // NaN or infinite costs (overflowing boxes) never win
     }
   }
@@ -109,6 +117,61 @@ uint32_t median_split(std::vector<PrimRef>& prims, uint32_t begin, uint32_t end,
   std::nth_element(prims.begin() + begin, prims.begin() + mid, prims.begin() + end,
                    [axis](const PrimRef& a, const PrimRef& b) { return a.centroid[axis] < b.centroid[axis]; });
   return mid;
+}
+
+/// Decides one node: its box, and either a leaf or a split whose two children are appended to `nodes` and
+/// pushed on `tasks`.
+void build_node(std::vector<PrimRef>& prims, std::vector<BvhNode>& nodes, const BuildTask& task,
+                std::vector<BuildTask>& tasks) {
+  Box3 box, centroids;
+  for (uint32_t i = task.begin; i < task.end; ++i) {
+    box.expand(prims[i].box);
+    centroids.expand(prims[i].centroid);
+  }
+  const uint32_t count = task.end - task.begin;
+
+  bool split = false;
+  uint32_t mid = 0;
+  if (count > 1) {
+    if (task.depth < kSahDepthLimit) {
+      const Split s = find_sah_split(prims, task.begin, task.end, centroids);
+      const float area = box.area();
+      const float leaf_cost = kIntersectionCost * group_cost(count) * area;
+      const float split_cost = kTraversalCost * area + kIntersectionCost * s.cost;
+      if (s.axis >= 0 && (count > kBvhMaxLeafSize || split_cost < leaf_cost)) {
+        const int axis = s.axis;
+        const float lo = centroids.lo[axis];
+        const float scale = static_cast<float>(kBinCount) / (centroids.hi[axis] - lo);
+        const auto it = std::partition(prims.begin() + task.begin, prims.begin() + task.end,
+                                       [&](const PrimRef& p) { return bin_of(p.centroid[axis], lo, scale) < s.bin; });
+        mid = static_cast<uint32_t>(it - prims.begin());
+        // The bin counts promise two non-empty sides; should rounding ever disagree, fall back to the median.
+        split = mid != task.begin && mid != task.end;
+      }
+    }
+    // All centroids coincide, no SAH split is finite, or the depth budget for SAH is spent.
+    if (!split && count > kBvhMaxLeafSize) {
+      mid = median_split(prims, task.begin, task.end, centroids);
+      split = true;
+    }
+  }
+
+  BvhNode& node = nodes[task.node];
+  node.lo = box.lo;
+  node.hi = box.hi;
+  if (!split) {
+    node.first = task.begin;
+    node.count = count;
+    return;
+  }
+  const auto left = static_cast<uint32_t>(nodes.size());
+  node.first = left;
+  node.count = 0;
+  nodes.push_back(BvhNode{});  // may invalidate `node`, which is not used past this point
+  nodes.push_back(BvhNode{});
+  // Left last so it is built next: a node's subtree then tends to sit close to it in memory.
+  tasks.push_back({left + 1, mid, task.end, task.depth + 1});
+  tasks.push_back({left, task.begin, mid, task.depth + 1});
 }
 
 }  // namespace
@@ -157,66 +220,57 @@ Bvh build_bvh(const std::vector<Vec3>& corners) {
   const auto prim_count = static_cast<uint32_t>(prims.size());
   bvh.nodes.reserve(2 * static_cast<size_t>(prim_count) - 1);
   bvh.nodes.push_back(BvhNode{});
-  std::vector<BuildTask> tasks;
-  tasks.push_back({0, 0, prim_count, 0});
-
+  // The top of the tree is built here; subtrees of at most kParallelGrain triangles (or a 32nd of the scene) are
+  // set aside and built independently on all hardware threads, each into its own node array, then appended in a
+  // fixed order: the tree is the same whatever the number of threads.
+  const uint32_t grain = std::max(kParallelGrain, prim_count / 32);
+  std::vector<BuildTask> deferred;
+  std::vector<BuildTask> tasks{{0, 0, prim_count, 0}};
   while (!tasks.empty()) {
     const BuildTask task = tasks.back();
     tasks.pop_back();
-
-    Box3 box, centroids;
-    for (uint32_t i = task.begin; i < task.end; ++i) {
-      box.expand(prims[i].box);
-      centroids.expand(prims[i].centroid);
-    }
-    const uint32_t count = task.end - task.begin;
-
-    bool split = false;
-    uint32_t mid = 0;
-    if (count > 1) {
-      if (task.depth < kSahDepthLimit) {
-        const Split s = find_sah_split(prims, task.begin, task.end, centroids);
-        const float area = box.area();
-        const float leaf_cost = kIntersectionCost * static_cast<float>(count) * area;
-        const float split_cost = kTraversalCost * area + kIntersectionCost * s.cost;
-        if (s.axis >= 0 && (count > kBvhMaxLeafSize || split_cost < leaf_cost)) {
-          const int axis = s.axis;
-          const float lo = centroids.lo[axis];
-          const float scale = static_cast<float>(kBinCount) / (centroids.hi[axis] - lo);
-          const auto it = std::partition(prims.begin() + task.begin, prims.begin() + task.end,
-                                         [&](const PrimRef& p) { return bin_of(p.centroid[axis], lo, scale) < s.bin; });
-          mid = static_cast<uint32_t>(it - prims.begin());
-          // The bin counts promise two non-empty sides; should rounding ever disagree, fall back to the median.
-          split = mid != task.begin && mid != task.end;
-        }
-      }
-      // All centroids coincide, no SAH split is finite, or the depth budget for SAH is spent.
-      if (!split && count > kBvhMaxLeafSize) {
-        mid = median_split(prims, task.begin, task.end, centroids);
-        split = true;
-      }
-    }
-
-    BvhNode& node = bvh.nodes[task.node];
-    node.lo = box.lo;
-    node.hi = box.hi;
-    if (!split) {
-      node.first = task.begin;
-      node.count = count;
+    if (task.end - task.begin <= grain && task.node != 0) {
+      deferred.push_back(task);
       continue;
     }
-    const auto left = static_cast<uint32_t>(bvh.nodes.size());
-    node.first = left;
-    node.count = 0;
-    bvh.nodes.push_back(BvhNode{});  // may invalidate `node`, which is not used past this point
-    bvh.nodes.push_back(BvhNode{});
-    // Left last so it is built next: a node's subtree then tends to sit close to it in memory.
-    tasks.push_back({left + 1, mid, task.end, task.depth + 1});
-    tasks.push_back({left, task.begin, mid, task.depth + 1});
+    build_node(prims, bvh.nodes, task, tasks);
+  }
+
+  std::vector<std::vector<BvhNode>> subtrees(deferred.size());
+  std::atomic<size_t> next{0};
+  auto worker = [&] {
+    for (size_t i; (i = next.fetch_add(1)) < deferred.size();) {
+      std::vector<BvhNode>& local = subtrees[i];
+      local.push_back(BvhNode{});
+      std::vector<BuildTask> stack{{0, deferred[i].begin, deferred[i].end, deferred[i].depth}};
+      while (!stack.empty()) {
+        const BuildTask task = stack.back();
+        stack.pop_back();
+        build_node(prims, local, task, stack);
+      }
+    }
+  };
+  const unsigned threads = std::max(1u, std::min(std::thread::hardware_concurrency(), 64u));
+  std::vector<std::thread> helpers;
+  for (unsigned t = 1; t < threads && t < deferred.size(); ++t) helpers.emplace_back(worker);
+  worker();
+  for (std::thread& t : helpers) t.join();
+
+  // Local node 0 becomes the deferred node itself; local node k > 0 goes to base + k - 1.
+  for (size_t i = 0; i < deferred.size(); ++i) {
+    const std::vector<BvhNode>& local = subtrees[i];
+    const auto base = static_cast<uint32_t>(bvh.nodes.size());
+    auto place = [&](BvhNode n) {
+      if (n.count == 0) n.first = base + n.first - 1;
+      return n;
+    };
+    bvh.nodes[deferred[i].node] = place(local[0]);
+    for (size_t k = 1; k < local.size(); ++k) bvh.nodes.push_back(place(local[k]));
   }
 
   bvh.triangles.reserve(prims.size());
   for (const PrimRef& p : prims) bvh.triangles.push_back(prepared[p.index]);
+  build_wide_bvh(bvh);
   return bvh;
 }
 

@@ -1,6 +1,10 @@
 // Queries on Lueur's BVH: the shared ray-triangle test, the closest-hit and the any-hit traversals.
 // Depends on core (math, ray) and bvh.h only; this is the renderer's hot path, so no allocation and no virtual calls.
 
+#include <emmintrin.h>  // SSE2 only: x86-64's baseline, so Debug builds without -march compile it too
+
+#include <bit>
+
 #include "bvh/bvh.h"
 
 namespace lueur {
@@ -130,63 +134,164 @@ bool intersect_triangle(const Ray& ray, const Vec3& v0, const Vec3& e1, const Ve
   return true;
 }
 
+namespace {
+
+// ---- the 4-wide kernels -----------------------------------------------------------------------------------------
+// Each lane computes exactly what the scalar functions above compute, operation for operation (SSE min/max return
+// their second operand on NaN, like min_f/max_f; no FMA is involved), so the BVH stays bit-identical to the
+// brute-force loop over intersect_triangle.
+
+/// The ray, broadcast to four lanes.
+struct RayLanes {
+  __m128 ox, oy, oz, dx, dy, dz, ix, iy, iz, tmin;
+  explicit RayLanes(const RayData& r)
+      : ox(_mm_set1_ps(r.origin.x)),
+        oy(_mm_set1_ps(r.origin.y)),
+        oz(_mm_set1_ps(r.origin.z)),
+        dx(_mm_set1_ps(r.dir.x)),
+        dy(_mm_set1_ps(r.dir.y)),
+        dz(_mm_set1_ps(r.dir.z)),
+        ix(_mm_set1_ps(r.inv_dir.x)),
+        iy(_mm_set1_ps(r.inv_dir.y)),
+        iz(_mm_set1_ps(r.inv_dir.z)),
+        tmin(_mm_set1_ps(r.tmin)) {}
+};
+
+/// hit_box on the four children of a node: bit k of the result says whether child k may hold a hit no farther
+/// than t_limit; entry receives the tmin-clamped entry distances.
+inline int hit_boxes(const BvhWideNode& node, const RayLanes& r, __m128 t_limit, __m128& entry) {
+  const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lo[0]), r.ox), r.ix);
+  const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.hi[0]), r.ox), r.ix);
+  const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lo[1]), r.oy), r.iy);
+  const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.hi[1]), r.oy), r.iy);
+  const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lo[2]), r.oz), r.iz);
+  const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.hi[2]), r.oz), r.iz);
+  const __m128 box_entry = _mm_max_ps(_mm_max_ps(_mm_min_ps(tx0, tx1), _mm_min_ps(ty0, ty1)), _mm_min_ps(tz0, tz1));
+  const __m128 box_exit =
+      _mm_mul_ps(_mm_min_ps(_mm_min_ps(_mm_max_ps(tx0, tx1), _mm_max_ps(ty0, ty1)), _mm_max_ps(tz0, tz1)),
+                 _mm_set1_ps(kExitScale));
+  entry = _mm_max_ps(box_entry, r.tmin);
+  return _mm_movemask_ps(_mm_and_ps(_mm_cmple_ps(entry, box_exit), _mm_cmple_ps(entry, t_limit)));
+}
+
+/// Möller–Trumbore on four triangles without the range test on t: bit k says lane k passed (det nonzero and
+/// finite, u, v inside); t, u, v receive every lane's values.
+inline int moller_trumbore4(const BvhTriangleGroup& g, const RayLanes& r, __m128& t, __m128& u, __m128& v) {
+  const __m128 e1x = _mm_load_ps(g.e1[0]), e1y = _mm_load_ps(g.e1[1]), e1z = _mm_load_ps(g.e1[2]);
+  const __m128 e2x = _mm_load_ps(g.e2[0]), e2y = _mm_load_ps(g.e2[1]), e2z = _mm_load_ps(g.e2[2]);
+  // p = cross(dir, e2), written as glm::cross writes it.
+  const __m128 px = _mm_sub_ps(_mm_mul_ps(r.dy, e2z), _mm_mul_ps(e2y, r.dz));
+  const __m128 py = _mm_sub_ps(_mm_mul_ps(r.dz, e2x), _mm_mul_ps(e2z, r.dx));
+  const __m128 pz = _mm_sub_ps(_mm_mul_ps(r.dx, e2y), _mm_mul_ps(e2x, r.dy));
+  // glm::dot sums x, y, then z.
+  const __m128 det = _mm_add_ps(_mm_add_ps(_mm_mul_ps(e1x, px), _mm_mul_ps(e1y, py)), _mm_mul_ps(e1z, pz));
+  const __m128 abs_det = _mm_andnot_ps(_mm_set1_ps(-0.0f), det);
+  __m128 ok = _mm_and_ps(_mm_cmpneq_ps(det, _mm_setzero_ps()), _mm_cmplt_ps(abs_det, _mm_set1_ps(kInfinity)));
+  if (_mm_movemask_ps(ok) == 0) return 0;
+  const __m128 inv_det = _mm_div_ps(_mm_set1_ps(1.0f), det);
+  const __m128 sx = _mm_sub_ps(r.ox, _mm_load_ps(g.v0[0]));
+  const __m128 sy = _mm_sub_ps(r.oy, _mm_load_ps(g.v0[1]));
+  const __m128 sz = _mm_sub_ps(r.oz, _mm_load_ps(g.v0[2]));
+  u = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(sx, px), _mm_mul_ps(sy, py)), _mm_mul_ps(sz, pz)), inv_det);
+  const __m128 one = _mm_set1_ps(1.0f), zero = _mm_setzero_ps();
+  ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpge_ps(u, zero), _mm_cmple_ps(u, one)));
+  if (_mm_movemask_ps(ok) == 0) return 0;
+  // q = cross(s, e1)
+  const __m128 qx = _mm_sub_ps(_mm_mul_ps(sy, e1z), _mm_mul_ps(e1y, sz));
+  const __m128 qy = _mm_sub_ps(_mm_mul_ps(sz, e1x), _mm_mul_ps(e1z, sx));
+  const __m128 qz = _mm_sub_ps(_mm_mul_ps(sx, e1y), _mm_mul_ps(e1x, sy));
+  v = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(r.dx, qx), _mm_mul_ps(r.dy, qy)), _mm_mul_ps(r.dz, qz)), inv_det);
+  ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpge_ps(v, zero), _mm_cmple_ps(_mm_add_ps(u, v), one)));
+  const int mask = _mm_movemask_ps(ok);
+  if (mask == 0) return 0;
+  t = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(e2x, qx), _mm_mul_ps(e2y, qy)), _mm_mul_ps(e2z, qz)), inv_det);
+  return mask;
+}
+
+inline float lane(__m128 x, uint32_t k) {
+  alignas(16) float values[4];
+  _mm_store_ps(values, x);
+  return values[k];
+}
+
+/// The rest of triangle_hit for one lane that passed Möller–Trumbore: the clamp into the triangle's box, then the
+/// ray's open interval.
+inline bool finish_lane(const RayData& r, const BvhTriangleGroup& g, uint32_t k, float& t) {
+  const Vec3 v0(g.v0[0][k], g.v0[1][k], g.v0[2][k]);
+  const Vec3 e1(g.e1[0][k], g.e1[1][k], g.e1[2][k]);
+  const Vec3 e2(g.e2[0][k], g.e2[1][k], g.e2[2][k]);
+  return clamp_to_triangle_box(r.origin, r.inv_dir, v0, e1, e2, t) && t > r.tmin && t < r.tmax;
+}
+
+/// A node or leaf waiting on the traversal stack, with the distance at which the ray enters it.
+struct StackEntry {
+  uint32_t child, count;
+  float entry;
+};
+
+// Each wide node visited pushes at most kBvhWidth - 1 entries, and no path is deeper than kBvhMaxDepth.
+constexpr uint32_t kStackSize = (kBvhWidth - 1) * kBvhMaxDepth + 1;
+
+}  // namespace
+
 Hit intersect_closest(const Bvh& bvh, const Ray& ray) {
   Hit hit;
   if (bvh.empty()) return hit;
   const RayData r(ray);
-  const BvhNode* nodes = bvh.nodes.data();
-  const BvhTriangle* triangles = bvh.triangles.data();
+  const RayLanes lanes(r);
+  const BvhWideNode* nodes = bvh.wide_nodes.data();
+  const BvhTriangleGroup* groups = bvh.groups.data();
 
   float best_t = r.tmax;
   uint32_t best_id = kNoHit;
   float best_u = 0.0f, best_v = 0.0f;
 
-  float entry;
-  if (!hit_box(nodes[0], r, best_t, entry)) return hit;
-
-  // Far children wait here with their entry distance, so they can be dropped once a closer hit is known.
-  struct StackEntry {
-    uint32_t node;
-    float entry;
-  };
-  StackEntry stack[kBvhMaxDepth];
+  StackEntry stack[kStackSize];
   uint32_t size = 0;
-  uint32_t current = 0;
+  StackEntry current{0, 0, 0.0f};  // the root, an inner node
 
   for (;;) {
-    const BvhNode& node = nodes[current];
-    if (node.count == 0) {
-      float entry_a, entry_b;
-      const bool hit_a = hit_box(nodes[node.first], r, best_t, entry_a);
-      const bool hit_b = hit_box(nodes[node.first + 1], r, best_t, entry_b);
-      if (hit_a && hit_b) {
-        // Nearer child first: its hits shrink best_t and let the other be culled.
-        if (entry_b < entry_a) {
-          stack[size++] = {node.first, entry_a};
-          current = node.first + 1;
-        } else {
-          stack[size++] = {node.first + 1, entry_b};
-          current = node.first;
+    if (current.count == 0) {
+      const BvhWideNode& node = nodes[current.child];
+      __m128 entry_lanes;
+      int mask = hit_boxes(node, lanes, _mm_set1_ps(best_t), entry_lanes);
+      if (mask != 0) {
+        alignas(16) float entry[4];
+        _mm_store_ps(entry, entry_lanes);
+        // The children hit, nearest first (insertion sort of at most four), so that hits in the nearer ones
+        // shrink best_t and let the farther ones be dropped.
+        StackEntry hits[kBvhWidth];
+        uint32_t n = 0;
+        while (mask != 0) {
+          const auto k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
+          mask &= mask - 1;
+          StackEntry e{node.child[k], node.count[k], entry[k]};
+          uint32_t j = n++;
+          for (; j > 0 && hits[j - 1].entry > e.entry; --j) hits[j] = hits[j - 1];
+          hits[j] = e;
         }
-        continue;
-      }
-      if (hit_a || hit_b) {
-        current = hit_a ? node.first : node.first + 1;
+        for (uint32_t j = n - 1; j > 0; --j) stack[size++] = hits[j];
+        current = hits[0];
         continue;
       }
     } else {
-      const BvhTriangle* tri = triangles + node.first;
-      const BvhTriangle* const end = tri + node.count;
-      for (; tri != end; ++tri) {
-        float t, u, v;
-        if (!triangle_hit(r.origin, r.dir, r.inv_dir, *tri, t, u, v)) continue;
-        if (!(t > r.tmin && t < r.tmax)) continue;
-        // Equal distances go to the lowest input index, whichever leaf was reached first.
-        if (t < best_t || (t == best_t && tri->id < best_id)) {
-          best_t = t;
-          best_id = tri->id;
-          best_u = u;
-          best_v = v;
+      for (uint32_t g = 0; g < current.count; ++g) {
+        const BvhTriangleGroup& group = groups[current.child + g];
+        __m128 t4, u4, v4;
+        int mask = moller_trumbore4(group, lanes, t4, u4, v4);
+        while (mask != 0) {
+          const auto k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
+          mask &= mask - 1;
+          float t = lane(t4, k);
+          if (!finish_lane(r, group, k, t)) continue;
+          // Equal distances go to the lowest input index, whichever leaf was reached first.
+          const uint32_t id = group.id[k];
+          if (t < best_t || (t == best_t && id < best_id)) {
+            best_t = t;
+            best_id = id;
+            best_u = lane(u4, k);
+            best_v = lane(v4, k);
+          }
         }
       }
     }
@@ -201,46 +306,52 @@ Hit intersect_closest(const Bvh& bvh, const Ray& ray) {
         }
         return hit;
       }
-      --size;
-    } while (stack[size].entry > best_t);
-    current = stack[size].node;
+      current = stack[--size];
+    } while (current.entry > best_t);
   }
 }
 
 bool intersect_any(const Bvh& bvh, const Ray& ray) {
   if (bvh.empty()) return false;
   const RayData r(ray);
-  const BvhNode* nodes = bvh.nodes.data();
-  const BvhTriangle* triangles = bvh.triangles.data();
+  const RayLanes lanes(r);
+  const __m128 t_limit = _mm_set1_ps(r.tmax);
+  const BvhWideNode* nodes = bvh.wide_nodes.data();
+  const BvhTriangleGroup* groups = bvh.groups.data();
 
-  float entry;
-  if (!hit_box(nodes[0], r, r.tmax, entry)) return false;
-
-  uint32_t stack[kBvhMaxDepth];
+  // Any hit ends the query, so children are taken in slot order, with no sorting and no distances kept.
+  struct Ref {
+    uint32_t child, count;
+  };
+  Ref stack[kStackSize];
   uint32_t size = 0;
-  uint32_t current = 0;
+  Ref current{0, 0};
   for (;;) {
-    const BvhNode& node = nodes[current];
-    if (node.count == 0) {
-      float entry_a, entry_b;
-      const bool hit_a = hit_box(nodes[node.first], r, r.tmax, entry_a);
-      const bool hit_b = hit_box(nodes[node.first + 1], r, r.tmax, entry_b);
-      if (hit_a && hit_b) {
-        stack[size++] = node.first + 1;
-        current = node.first;
-        continue;
-      }
-      if (hit_a || hit_b) {
-        current = hit_a ? node.first : node.first + 1;
+    if (current.count == 0) {
+      const BvhWideNode& node = nodes[current.child];
+      __m128 entry;
+      int mask = hit_boxes(node, lanes, t_limit, entry);
+      if (mask != 0) {
+        auto k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
+        mask &= mask - 1;
+        current = {node.child[k], node.count[k]};
+        while (mask != 0) {
+          k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
+          mask &= mask - 1;
+          stack[size++] = {node.child[k], node.count[k]};
+        }
         continue;
       }
     } else {
-      const BvhTriangle* tri = triangles + node.first;
-      const BvhTriangle* const end = tri + node.count;
-      for (; tri != end; ++tri) {
-        float t, u, v;
-        if (triangle_hit(r.origin, r.dir, r.inv_dir, *tri, t, u, v) && t > r.tmin && t < r.tmax) {
-          return true;
+      for (uint32_t g = 0; g < current.count; ++g) {
+        const BvhTriangleGroup& group = groups[current.child + g];
+        __m128 t4, u4, v4;
+        int mask = moller_trumbore4(group, lanes, t4, u4, v4);
+        while (mask != 0) {
+          const auto k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
+          mask &= mask - 1;
+          float t = lane(t4, k);
+          if (finish_lane(r, group, k, t)) return true;
         }
       }
     }

@@ -37,7 +37,7 @@ Vec3 sample_emitter(const TracedScene& traced, const SurfacePoint& sp, uint32_t 
   shadow.tmin = 0.0f;
   shadow.tmax = 1.0f - 1e-4f;  // stop just short of the light itself
   ++rays_traced;
-  if (intersect_any(traced.bvh, shadow)) return Vec3(0.0f);
+  if (intersect_any(traced.accel, shadow)) return Vec3(0.0f);
 
   const float area = traced.lights.areas[table_index];
   return scene.material_of(tri).ke * (cos_surface * cos_light * area / distance2);

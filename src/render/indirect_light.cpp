@@ -77,7 +77,7 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
     bounce.origin = offset_origin(sp.position, sp.geometric_normal, wi);
     bounce.dir = wi;
     ++rays_traced;
-    const Hit hit = intersect_closest(traced.bvh, bounce);
+    const Hit hit = intersect_closest(traced.accel, bounce);
     if (!hit.found()) continue;
     ++result.bounce_hits;
     const SurfacePoint q = make_surface_point(scene, bounce, hit);
@@ -133,7 +133,7 @@ Vec3 estimate_ambient_occlusion(const TracedScene& traced, const SurfacePoint& s
     ray.dir = wi;
     ray.tmax = radius;
     ++rays_traced;
-    if (!intersect_any(traced.bvh, ray)) ++open;
+    if (!intersect_any(traced.accel, ray)) ++open;
   }
   return traced.scene.material_of(sp.triangle).kd * (static_cast<float>(open) / static_cast<float>(rays));
 }

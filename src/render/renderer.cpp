@@ -36,7 +36,7 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
   const float jx = camera_rng.next_float(), jy = camera_rng.next_float();
   const Ray ray = camera_ray(camera, static_cast<float>(x) + jx, static_cast<float>(y) + jy);
   ++rays;
-  const Hit hit = intersect_closest(traced.bvh, ray);
+  const Hit hit = intersect_closest(traced.accel, ray);
   if (!hit.found()) return;
 
   const SurfacePoint sp = make_surface_point(traced.scene, ray, hit);

@@ -3,13 +3,13 @@
 
 namespace lueur {
 
-std::shared_ptr<const TracedScene> prepare_scene(Scene scene) {
+std::shared_ptr<const TracedScene> prepare_scene(Scene scene, AccelKind accel) {
   auto traced = std::make_shared<TracedScene>();
   std::vector<Vec3> corners;
   corners.reserve(scene.triangles.size() * 3);
   for (const Triangle& t : scene.triangles)
     for (const uint32_t v : t.v) corners.push_back(scene.positions[v]);
-  traced->bvh = build_bvh(corners);
+  traced->accel = build_accelerator(corners, accel);
   traced->lights = build_light_table(scene);
   traced->diagonal = std::max(scene.bounds().diagonal(), 1e-6f);
   traced->scene = std::move(scene);

@@ -1,8 +1,8 @@
-// A scene made ready to trace: the scene itself, its BVH and its light table, built once and then read-only.
-// Depends on the scene, BVH and render settings.
+// A scene made ready to trace: the scene itself, its acceleration structure and its light table, built once and
+// then read-only. Depends on the scene, the accelerator and render settings.
 #pragma once
 
-#include "bvh/bvh.h"
+#include "accel/accelerator.h"
 #include "render/light_sampler.h"
 #include "scene/scene.h"
 
@@ -12,13 +12,14 @@ namespace lueur {
 
 struct TracedScene {
   Scene scene;
-  Bvh bvh;
+  Accelerator accel;
   LightTable lights;
   float diagonal = 1.0f;  ///< bounding-box diagonal, the scale for default radii
 };
 
-/// Builds the BVH and the light table (the expensive step of opening a scene).
-std::shared_ptr<const TracedScene> prepare_scene(Scene scene);
+/// Builds the acceleration structure of the chosen kind and the light table (the expensive step of opening a
+/// scene). Throws AccelError for Embree in a build without it.
+std::shared_ptr<const TracedScene> prepare_scene(Scene scene, AccelKind accel = AccelKind::kLueur);
 
 /// The surface seen at a hit, with its normals turned towards the side the ray came from (two-sided shading).
 struct SurfacePoint {

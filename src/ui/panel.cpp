@@ -115,6 +115,7 @@ void statistics_section(const PanelModel& m) {
 }
 
 void control_section(PanelModel& m, PanelActions& actions) {
+  if (enum_combo("Accelerator", kAccelKindNames, m.accel)) actions.accel_changed = true;
   if (ImGui::Button(m.paused ? "Resume" : "Pause")) m.paused = !m.paused;
   ImGui::SameLine();
   if (ImGui::Button("Reset")) actions.reset = true;

@@ -8,6 +8,7 @@
 #include <map>
 #include <string>
 
+#include "accel/accelerator.h"
 #include "render/progressive_tracer.h"
 #include "render/view_state.h"
 
@@ -16,6 +17,7 @@ namespace lueur {
 struct PanelModel {
   ViewState view;  ///< edited by the widgets
   bool paused = false;
+  AccelKind accel = AccelKind::kLueur;  ///< which acceleration structure traces the rays (rebuilds the scene)
   // Read-only figures.
   TracerStats stats;
   int film_width = 0, film_height = 0, preview_divisor = 1;
@@ -37,6 +39,7 @@ struct PanelActions {
   bool save_view = false, load_view = false;
   bool frame_scene = false, reset_camera = false;
   bool smooth_normals_changed = false;
+  bool accel_changed = false;
 };
 
 /// Draws the panel as one ImGui window at the top-left of the display. Call between ImGui::NewFrame and Render.

@@ -1,0 +1,21 @@
+// Building either back-end behind the Accelerator interface.
+#include "accel/accelerator.h"
+
+namespace lueur {
+
+Accelerator build_accelerator(const std::vector<Vec3>& corners, AccelKind kind) {
+  Accelerator accel;
+  accel.kind = kind;
+  if (kind == AccelKind::kEmbree)
+    accel.embree = build_embree_scene(corners);
+  else
+    accel.bvh = build_bvh(corners);
+  return accel;
+}
+
+size_t accelerator_bytes(const Accelerator& accel) {
+  if (accel.kind == AccelKind::kEmbree) return accel.embree ? embree_bytes(*accel.embree) : 0;
+  return accel.bvh.traversal_bytes();
+}
+
+}  // namespace lueur

@@ -1,0 +1,208 @@
+// lueur-bench: Lueur's BVH against Embree on the same rays (throughput, build time, memory), and time to quality
+// of the light-sampling strategies and L2 reuse modes. Prints a table; --json FILE writes every figure.
+// Not part of the tests' pass or fail: the figures depend on the machine.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "bench/bench_convergence.h"
+#include "bench/bench_rays.h"
+#include "bench/bench_scenes.h"
+#include "bench/bench_throughput.h"
+#include "core/atomic_file.h"
+#include "scene/obj_loader.h"
+
+namespace lueur::bench {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+struct BenchOptions {
+  bool quick = false;
+  bool smoke = false;
+  std::string json_path;
+  std::string only;  ///< when set: only the scenes whose name contains it
+  int rounds = 0;    ///< when set: alternating timing rounds
+  std::string scenes_dir = LUEUR_SHARED_SCENES;
+  std::set<std::string> sections = {"build", "throughput", "convergence"};
+  int ray_size = 512;  ///< rays are generated for a ray_size x ray_size view
+  TimingOptions timing;
+  ConvergenceOptions convergence;
+};
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+std::optional<BenchOptions> parse(int argc, char** argv) {
+  BenchOptions o;
+  CLI::App app{"lueur-bench: Lueur's BVH against Embree on the same rays, and time to quality", "lueur-bench"};
+  std::string sections;
+  int reference_frames = 0, convergence_size = 0;
+  double convergence_seconds = 0.0;
+  app.add_flag("--quick", o.quick, "a reduced set that runs in under a minute");
+  app.add_flag("--smoke", o.smoke, "a tiny run that only checks the plumbing (seconds; for the test suite)");
+  app.add_option("--json", o.json_path, "write every figure to FILE as JSON");
+  app.add_option("--scenes", o.scenes_dir, "folder of the shared scenes (default: ../shared/scenes of the source)");
+  app.add_option("--only", o.only, "only the scenes whose name contains this text");
+  app.add_option("--rounds", o.rounds, "alternating timing rounds per figure (default 3; the best is kept)")
+      ->check(CLI::Range(1, 1000));
+  app.add_option("--sections", sections, "comma-separated: build,throughput,convergence (default all)");
+  app.add_option("--reference-frames", reference_frames, "frames of each convergence reference (default 128)")
+      ->check(CLI::Range(1, 100000));
+  app.add_option("--convergence-seconds", convergence_seconds, "equal time per convergence variant (default 20)")
+      ->check(CLI::Range(0.001, 100000.0));
+  app.add_option("--convergence-size", convergence_size, "convergence image side in pixels (default 512)")
+      ->check(CLI::Range(8, 8192));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::printf("%s", app.help().c_str());
+    return std::nullopt;
+  } catch (const CLI::ParseError& e) {
+    std::string message = e.what();
+    if (const size_t nl = message.find('\n'); nl != std::string::npos) message.resize(nl);
+    throw UsageError(message);
+  }
+  if (!sections.empty()) {
+    o.sections.clear();
+    std::istringstream in(sections);
+    std::string name;
+    while (std::getline(in, name, ',')) {
+      if (name != "build" && name != "throughput" && name != "convergence")
+        throw UsageError("--sections: '" + name + "' is not one of build|throughput|convergence");
+      o.sections.insert(name);
+    }
+  }
+  if (o.quick) {
+    o.ray_size = 192;
+    o.timing = {0.15, 2};
+    o.convergence = {128, 128, 32, 1.5, 0, 1};
+  }
+  if (o.smoke) {
+    o.ray_size = 24;
+    o.timing = {0.001, 1};
+    o.convergence = {16, 16, 2, 0.001, 0, 1};
+    o.scenes_dir.clear();
+  }
+  if (o.rounds > 0) o.timing.rounds = o.rounds;
+  if (reference_frames > 0) o.convergence.reference_frames = reference_frames;
+  if (convergence_seconds > 0.0) o.convergence.seconds = convergence_seconds;
+  if (convergence_size > 0) o.convergence.width = o.convergence.height = convergence_size;
+  if (!o.json_path.empty()) {
+    std::filesystem::path dir = std::filesystem::path(o.json_path).parent_path();
+    if (dir.empty()) dir = ".";
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec))
+      throw UsageError("--json: cannot write '" + o.json_path + "': no directory '" + dir.string() + "'");
+  }
+  return o;
+}
+
+std::vector<Vec3> corners_of(const Scene& scene) {
+  std::vector<Vec3> corners;
+  corners.reserve(3 * scene.triangles.size());
+  for (const Triangle& t : scene.triangles)
+    for (const uint32_t v : t.v) corners.push_back(scene.positions[v]);
+  return corners;
+}
+
+Json pair(double lueur, const std::optional<double>& embree) {
+  return Json{{"lueur", lueur}, {"embree", embree ? Json(*embree) : Json(nullptr)}};
+}
+
+int run(const BenchOptions& o) {
+  Json results = Json::array(), builds = Json::array(), convergence = Json::array();
+  const bool need_scenes = o.sections.count("build") || o.sections.count("throughput");
+  if (!embree_available()) std::fprintf(stderr, "lueur-bench: this build has no Embree: Lueur's figures only\n");
+
+  if (need_scenes) {
+    std::vector<std::string> skipped;
+    std::vector<BenchScene> scenes = load_bench_scenes(o.quick || o.smoke, o.scenes_dir, skipped);
+    if (o.smoke) scenes.back() = make_sphere_field(4, 7);
+    if (!o.only.empty())
+      std::erase_if(scenes, [&](const BenchScene& b) { return b.name.find(o.only) == std::string::npos; });
+    for (const std::string& s : skipped) std::fprintf(stderr, "lueur-bench: skipped %s\n", s.c_str());
+    ThreadPool one(1), all(0);
+    std::vector<ThreadPool*> pools = {&one};
+    if (all.thread_count() > 1) pools.push_back(&all);
+
+    std::printf("%-16s %9s %-8s %7s %10s %10s %7s %9s\n", "scene", "triangles", "rays", "threads", "lueur", "embree",
+                "ratio", "agree");
+    for (BenchScene& b : scenes) {
+      const std::vector<Vec3> corners = corners_of(b.scene);
+      const size_t triangles = b.scene.triangles.size();
+      Bvh bvh;
+      std::shared_ptr<const EmbreeScene> embree;
+      const BuildFigures build = measure_builds(corners, triangles < 500000 ? 3 : 1, bvh, embree);
+      if (o.sections.count("build")) {
+        builds.push_back(Json{{"scene", b.name},
+                              {"triangles", triangles},
+                              {"ms", pair(build.lueur_ms, build.embree_ms)},
+                              {"bytes_per_triangle", pair(build.lueur_bytes, build.embree_bytes)}});
+        std::fprintf(stderr, "lueur-bench: %s build: lueur %.1f ms %.1f B/tri, embree %.1f ms %.1f B/tri\n",
+                     b.name.c_str(), build.lueur_ms, build.lueur_bytes, build.embree_ms.value_or(0.0),
+                     build.embree_bytes.value_or(0.0));
+      }
+      if (!o.sections.count("throughput")) continue;
+      Accelerator lueur;
+      lueur.bvh = std::move(bvh);
+      const RaySets sets = make_ray_sets(b, lueur, o.ray_size, o.ray_size, 1);
+      const struct {
+        const char* name;
+        const std::vector<Ray>* rays;
+        Query query;
+      } kinds[] = {{"primary", &sets.primary, Query::kClosest},
+                   {"shadow", &sets.shadow, Query::kAny},
+                   {"bounce", &sets.bounce, Query::kClosest}};
+      for (const auto& kind : kinds)
+        for (ThreadPool* pool : pools) {
+          const Throughput t = measure_throughput(*kind.rays, kind.query, lueur.bvh, embree.get(), *pool, o.timing);
+          const bool has_ratio = t.embree && *t.embree > 0.0;
+          const double ratio = has_ratio ? t.lueur / *t.embree : 0.0;
+          results.push_back(Json{{"scene", b.name},
+                                 {"triangles", triangles},
+                                 {"rays", kind.name},
+                                 {"threads", pool->thread_count()},
+                                 {"mrays", pair(t.lueur, t.embree)},
+                                 {"ratio", has_ratio ? Json(ratio) : Json(nullptr)}});
+          std::printf("%-16s %9zu %-8s %7d %10.2f %10.2f %7.3f %9.6f\n", b.name.c_str(), triangles, kind.name,
+                      pool->thread_count(), t.lueur, t.embree.value_or(0.0), ratio, t.agreement);
+          std::fflush(stdout);
+        }
+    }
+  }
+  if (o.sections.count("convergence")) convergence = run_convergence(o.convergence, stderr);
+
+  if (!o.json_path.empty()) {
+    const Json out{{"results", results}, {"build", builds}, {"convergence", convergence}};
+    write_file_atomically(o.json_path, out.dump(2) + "\n");
+    std::printf("%s\n", o.json_path.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+}  // namespace lueur::bench
+
+int main(int argc, char** argv) {
+  using namespace lueur;
+  try {
+    const auto options = bench::parse(argc, argv);
+    if (!options) return 0;
+    return bench::run(*options);
+  } catch (const bench::UsageError& e) {
+    std::fprintf(stderr, "lueur-bench: error: %s (see lueur-bench --help)\n", e.what());
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "lueur-bench: error: %s\n", e.what());
+  } catch (const IoError& e) {
+    std::fprintf(stderr, "lueur-bench: error: %s\n", e.what());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "lueur-bench: error: %s\n", e.what());
+  }
+  return 2;
+}

@@ -1,0 +1,33 @@
+// The scenes lueur-bench measures: the default scene, the real scenes in ../shared/scenes when present, and a
+// procedural field of spheres of about 2 million triangles, each with a view and the lights its shadow rays aim at.
+// Depends on the scene and camera layers.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "render/camera.h"
+#include "scene/scene.h"
+
+namespace lueur::bench {
+
+struct BenchScene {
+  std::string name;
+  Scene scene;
+  CameraSpec view;
+  std::vector<uint32_t> lights;  ///< emitter triangles the shadow rays aim at (uniform by area)
+};
+
+/// A field of `spheres` random UV spheres (64 x 32, 3,968 triangles each) over a ground quad, lit from above,
+/// seen from above one corner.
+BenchScene make_sphere_field(int spheres, uint32_t seed);
+
+/// Spheres for about `triangles` triangles.
+int spheres_for(size_t triangles);
+
+/// The benchmark's scene list. `quick`: the default scene, the bunny, and a 100k-triangle sphere field; otherwise
+/// every scene named in the README's table that is present, and the 2M-triangle field. `shared_dir` may be empty
+/// or missing: those scenes are then left out (and named in `skipped`).
+std::vector<BenchScene> load_bench_scenes(bool quick, const std::string& shared_dir, std::vector<std::string>& skipped);
+
+}  // namespace lueur::bench

@@ -1,0 +1,108 @@
+// Ray throughput and build time of the two back-ends.
+#include "bench/bench_throughput.h"
+
+#include <algorithm>
+#include <chrono>
+
+namespace lueur::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// Rays per task: large enough that handing out tasks costs nothing, small enough to balance two threads.
+constexpr int kChunk = 512;
+
+/// Per-worker sink, padded apart, so that the results are used and the compiler cannot drop the queries.
+struct alignas(64) Sink {
+  uint64_t value = 0;
+};
+
+/// One pass over every ray with `trace(ray) -> uint32_t`, spread over the pool.
+template <typename Trace>
+void trace_all(const std::vector<Ray>& rays, ThreadPool& pool, std::vector<Sink>& sinks, const Trace& trace) {
+  const int chunks = static_cast<int>((rays.size() + kChunk - 1) / kChunk);
+  pool.parallel_for(chunks, [&](int chunk, int worker) {
+    const size_t begin = static_cast<size_t>(chunk) * kChunk, end = std::min(rays.size(), begin + kChunk);
+    uint64_t sum = 0;
+    for (size_t i = begin; i < end; ++i) sum += trace(rays[i]);
+    sinks[static_cast<size_t>(worker)].value += sum;
+  });
+}
+
+/// Mrays/s of whole passes repeated for at least `seconds`.
+template <typename Trace>
+double time_passes(const std::vector<Ray>& rays, ThreadPool& pool, double seconds, const Trace& trace) {
+  std::vector<Sink> sinks(static_cast<size_t>(pool.thread_count()));
+  const Clock::time_point start = Clock::now();
+  uint64_t traced = 0;
+  double elapsed = 0.0;
+  do {
+    trace_all(rays, pool, sinks, trace);
+    traced += rays.size();
+    elapsed = seconds_since(start);
+  } while (elapsed < seconds);
+  volatile uint64_t keep = 0;
+  for (const Sink& s : sinks) keep = keep + s.value;
+  return static_cast<double>(traced) * 1e-6 / elapsed;
+}
+
+}  // namespace
+
+Throughput measure_throughput(const std::vector<Ray>& rays, Query query, const Bvh& bvh, const EmbreeScene* embree,
+                              ThreadPool& pool, const TimingOptions& options) {
+  Throughput result;
+  if (rays.empty()) return result;
+  const auto lueur_closest = [&](const Ray& r) { return intersect_closest(bvh, r).triangle; };
+  const auto lueur_any = [&](const Ray& r) { return static_cast<uint32_t>(intersect_any(bvh, r)); };
+  const auto embree_closest = [&](const Ray& r) { return embree_intersect_closest_raw(*embree, r).triangle; };
+  const auto embree_any = [&](const Ray& r) { return static_cast<uint32_t>(embree_intersect_any(*embree, r)); };
+
+  for (int round = 0; round < options.rounds; ++round) {
+    const double l = query == Query::kClosest ? time_passes(rays, pool, options.seconds_per_round, lueur_closest)
+                                              : time_passes(rays, pool, options.seconds_per_round, lueur_any);
+    result.lueur = std::max(result.lueur, l);
+    if (!embree) continue;
+    const double e = query == Query::kClosest ? time_passes(rays, pool, options.seconds_per_round, embree_closest)
+                                              : time_passes(rays, pool, options.seconds_per_round, embree_any);
+    result.embree = std::max(result.embree.value_or(0.0), e);
+  }
+  if (embree) {
+    size_t same = 0;
+    for (const Ray& r : rays)
+      same += query == Query::kClosest ? lueur_closest(r) == embree_closest(r) : lueur_any(r) == embree_any(r);
+    result.agreement = static_cast<double>(same) / static_cast<double>(rays.size());
+  }
+  return result;
+}
+
+BuildFigures measure_builds(const std::vector<Vec3>& corners, int repeats, Bvh& bvh,
+                            std::shared_ptr<const EmbreeScene>& embree) {
+  BuildFigures f;
+  const double triangles = std::max<double>(1.0, static_cast<double>(corners.size() / 3));
+  f.lueur_ms = kInfinity;
+  for (int r = 0; r < repeats; ++r) {
+    bvh = Bvh{};  // the previous tree is freed before timing, as a fresh build would find memory
+    const Clock::time_point start = Clock::now();
+    bvh = build_bvh(corners);
+    f.lueur_ms = std::min(f.lueur_ms, 1e3 * seconds_since(start));
+  }
+  Accelerator lueur;
+  lueur.bvh = std::move(bvh);
+  f.lueur_bytes = static_cast<double>(accelerator_bytes(lueur)) / triangles;
+  bvh = std::move(lueur.bvh);
+  if (!embree_available()) return f;
+  double best = kInfinity;
+  for (int r = 0; r < repeats; ++r) {
+    embree.reset();
+    const Clock::time_point start = Clock::now();
+    embree = build_embree_scene(corners);
+    best = std::min(best, 1e3 * seconds_since(start));
+  }
+  f.embree_ms = best;
+  f.embree_bytes = static_cast<double>(embree_bytes(*embree)) / triangles;
+  return f;
+}
+
+}  // namespace lueur::bench

@@ -1,0 +1,89 @@
+// lueur-bench's plumbing, not its figures: a tiny run writes JSON in the issue's schema, and bad input is a
+// one-line error with exit status 2. The figures themselves are not tested (they depend on the machine).
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "accel/embree_backend.h"
+#include "test_support.h"
+
+namespace lueur {
+namespace {
+
+test::CommandResult run_bench(const std::string& arguments) {
+  return test::run_program(LUEUR_BENCH_EXECUTABLE, arguments);
+}
+
+/// {"lueur": number > 0, "embree": number > 0, or null without Embree}
+void expect_pair(const nlohmann::json& pair, const std::string& what) {
+  ASSERT_TRUE(pair.is_object()) << what;
+  ASSERT_TRUE(pair["lueur"].is_number()) << what;
+  EXPECT_GT(pair["lueur"].get<double>(), 0.0) << what;
+  if (embree_available()) {
+    ASSERT_TRUE(pair["embree"].is_number()) << what;
+    EXPECT_GT(pair["embree"].get<double>(), 0.0) << what;
+  } else {
+    EXPECT_TRUE(pair["embree"].is_null()) << what;
+  }
+}
+
+TEST(Bench, SmokeRunWritesTheIssuesJsonSchema) {
+  const std::string dir = test::make_temp_dir("bench");
+  const std::string path = dir + "/bench.json";
+  const test::CommandResult r = run_bench("--smoke --json " + path);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(test::read_file(path));
+  ASSERT_TRUE(j.is_object());
+  EXPECT_EQ(j.size(), 3u);
+
+  // Two scenes (default, a small sphere field) x three kinds x (1 and all threads).
+  const auto& results = j["results"];
+  ASSERT_TRUE(results.is_array());
+  EXPECT_GE(results.size(), 6u);
+  std::set<std::string> kinds;
+  for (const auto& e : results) {
+    EXPECT_TRUE(e["scene"].is_string());
+    EXPECT_GT(e["triangles"].get<int>(), 0);
+    kinds.insert(e["rays"].get<std::string>());
+    EXPECT_GE(e["threads"].get<int>(), 1);
+    expect_pair(e["mrays"], "mrays");
+    if (embree_available())
+      EXPECT_NEAR(e["ratio"].get<double>(), e["mrays"]["lueur"].get<double>() / e["mrays"]["embree"].get<double>(),
+                  1e-9);
+    else
+      EXPECT_TRUE(e["ratio"].is_null());
+  }
+  EXPECT_EQ(kinds, (std::set<std::string>{"primary", "shadow", "bounce"}));
+
+  const auto& build = j["build"];
+  ASSERT_EQ(build.size(), 2u);
+  for (const auto& b : build) {
+    EXPECT_EQ(b.size(), 4u);
+    EXPECT_TRUE(b["scene"].is_string());
+    EXPECT_GT(b["triangles"].get<int>(), 0);
+    expect_pair(b["ms"], "ms");
+    expect_pair(b["bytes_per_triangle"], "bytes_per_triangle");
+  }
+
+  // Four light strategies and three reuse modes, each with an RMSE per measure.
+  const auto& convergence = j["convergence"];
+  ASSERT_EQ(convergence.size(), 7u);
+  for (const auto& c : convergence) {
+    EXPECT_GE(c["frames"].get<int>(), 1);
+    ASSERT_TRUE(c["rmse"].is_object());
+    for (const auto& [measure, value] : c["rmse"].items()) EXPECT_GE(value.get<double>(), 0.0) << measure;
+  }
+}
+
+TEST(Bench, BadInputIsOneLineAndStatusTwo) {
+  for (const std::string args : {"--no-such-option", "--sections build,nonsense", "--json /no/such/dir/b.json"}) {
+    const test::CommandResult r = run_bench(args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << ": " << r.output;
+    EXPECT_EQ(r.output.rfind("lueur-bench: error: ", 0), 0u) << r.output;
+  }
+}
+
+}  // namespace
+}  // namespace lueur
