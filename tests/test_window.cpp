@@ -101,7 +101,7 @@ class Window : public ::testing::Test {
       xdotool("mousemove --window " + window_ + " " + std::to_string(x0 + (x1 - x0) * step / 8) + " " +
               std::to_string(y0 + (y1 - y0) * step / 8));
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(60));
+    std::this_thread::sleep_for(std::chrono::milliseconds(250));  // the viewer must see the button still down
     xdotool("mouseup 1");
   }
 
@@ -161,8 +161,10 @@ TEST_F(Window, KeepsDrawingWhileTheTracerWorks) {
   const double display_frames = after["display_frames"].get<double>() - before["display_frames"].get<double>();
   const double traced_frames = after["frames"].get<double>() - before["frames"].get<double>();
   EXPECT_GT(after["last_frame_seconds"].get<double>(), 0.1) << "the tracer's frames should be slow here";
-  EXPECT_GT(display_frames, 30.0) << "the window drew only " << display_frames << " frames in 3 s";
-  EXPECT_GT(display_frames, 5.0 * std::max(traced_frames, 1.0)) << "the display waits for the tracer";
+  // Generous bounds, so that a loaded CI machine does not fail it: a display that waited for the tracer would draw
+  // about one frame per traced frame.
+  EXPECT_GT(display_frames, 15.0) << "the window drew only " << display_frames << " frames in 3 s";
+  EXPECT_GT(display_frames, 4.0 * std::max(traced_frames, 1.0)) << "the display waits for the tracer";
 }
 
 }  // namespace
