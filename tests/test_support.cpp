@@ -20,9 +20,27 @@ std::string make_temp_dir(const std::string& tag) {
   return base.string();
 }
 
-CommandResult run_lueur(const std::string& arguments) {
+std::string shell_quote(const std::string& text) {
+  std::string quoted = "'";
+  for (const char c : text) {
+    if (c == '\'')
+      quoted += "'\\''";
+    else
+      quoted += c;
+  }
+  quoted += '\'';
+  return quoted;
+}
+
+CommandResult run_lueur(const std::string& arguments, const std::string& environment) {
   CommandResult result;
-  const std::string command = std::string("'") + LUEUR_EXECUTABLE + "' " + arguments + " 2>&1";
+  // Generous: sanitizer builds are several times slower than release ones.
+  std::string command = environment;
+  command += " timeout 300 ";
+  command += shell_quote(LUEUR_EXECUTABLE);
+  command += ' ';
+  command += arguments;
+  command += " 2>&1";
   FILE* pipe = ::popen(command.c_str(), "r");
   if (!pipe) return result;
   char buffer[4096];

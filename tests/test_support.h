@@ -13,8 +13,13 @@ struct CommandResult {
   std::string output;  ///< stdout and stderr together
 };
 
-/// Runs `lueur` (the built executable) with the given argument string through the shell.
-CommandResult run_lueur(const std::string& arguments);
+/// Runs `lueur` (the built executable) with the given argument string through the shell, under `timeout` so
+/// that a hang fails the test (exit code 124) instead of stalling the suite. `environment` is put before the
+/// command, e.g. "LUEUR_MEMORY_LIMIT_MB=64".
+CommandResult run_lueur(const std::string& arguments, const std::string& environment = "");
+
+/// Single-quotes a string for the shell (quotes inside it included).
+std::string shell_quote(const std::string& text);
 
 std::string read_file(const std::string& path);
 bool file_exists(const std::string& path);

@@ -5,7 +5,7 @@
 
 namespace lueur {
 
-OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect) {
+OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect, const MemoryBudget& memory) {
   OpenedScene opened;
   Scene scene;
   if (path.empty()) {
@@ -16,6 +16,7 @@ OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspec
   } else {
     LoadOptions load_options;
     load_options.smooth_normals = smooth_normals;
+    load_options.memory = memory;
     LoadedScene loaded = load_obj(path, load_options);
     scene = std::move(loaded.scene);
     opened.warnings = std::move(loaded.warnings);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "app/options.h"
+#include "core/memory_budget.h"
 #include "render/traced_scene.h"
 
 #include <memory>
@@ -17,7 +18,7 @@ struct OpenedScene {
 };
 
 /// Loads (or builds) the scene, applies the normal-smoothing option and prepares it for tracing.
-/// Throws SceneError for a scene that cannot be used.
-OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect);
+/// Throws SceneError for a scene that cannot be used, or one too large for `memory`.
+OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect, const MemoryBudget& memory);
 
 }  // namespace lueur
