@@ -32,10 +32,10 @@ std::string shell_quote(const std::string& text) {
   return quoted;
 }
 
-CommandResult run_lueur(const std::string& arguments, const std::string& environment) {
+CommandResult run_lueur(const std::string& arguments, const std::string& prefix) {
   CommandResult result;
   // Generous: sanitizer builds are several times slower than release ones.
-  std::string command = environment;
+  std::string command = prefix;
   command += " timeout 300 ";
   command += shell_quote(LUEUR_EXECUTABLE);
   command += ' ';

@@ -14,9 +14,9 @@ struct CommandResult {
 };
 
 /// Runs `lueur` (the built executable) with the given argument string through the shell, under `timeout` so
-/// that a hang fails the test (exit code 124) instead of stalling the suite. `environment` is put before the
-/// command, e.g. "LUEUR_MEMORY_LIMIT_MB=64".
-CommandResult run_lueur(const std::string& arguments, const std::string& environment = "");
+/// that a hang fails the test (exit code 124) instead of stalling the suite. `prefix` goes before the command:
+/// environment variables ("LUEUR_MEMORY_LIMIT_MB=64") or a wrapper command.
+CommandResult run_lueur(const std::string& arguments, const std::string& prefix = "");
 
 /// Single-quotes a string for the shell (quotes inside it included).
 std::string shell_quote(const std::string& text);

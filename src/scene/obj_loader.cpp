@@ -114,10 +114,13 @@ NumberStatus parse_float(string_view token, float& out) {
   return std::isfinite(out) ? NumberStatus::ok : NumberStatus::not_finite;
 }
 
-bool parse_integer(string_view token, long long& out) {
+/// Parses a whole token as an integer; not_finite stands for "beyond long long".
+NumberStatus parse_integer(string_view token, long long& out) {
   if (token.size() > 1 && token[0] == '+' && std::isdigit(static_cast<unsigned char>(token[1]))) token.remove_prefix(1);
   const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), out);
-  return ec == std::errc() && end == token.data() + token.size();
+  if (end != token.data() + token.size() || token.empty()) return NumberStatus::not_a_number;
+  if (ec == std::errc::result_out_of_range) return NumberStatus::not_finite;
+  return ec == std::errc() ? NumberStatus::ok : NumberStatus::not_a_number;
 }
 
 // ---- OBJ validation ---------------------------------------------------------------------------------------
@@ -147,6 +150,7 @@ struct UseMtl {
 struct ObjSummary {
   size_t vertices = 0, normals = 0, texcoords = 0;
   size_t expected_triangles = 0;         ///< k - 2 per face with k vertices
+  uint64_t triangulation_work = 0;       ///< k^2 summed over faces with k > 4 (tinyobjloader's ear clipping)
   size_t triangles_before_usemtl = 0;    ///< faces that tinyobjloader gives material -1
   bool references_normals = false;
   std::vector<MtlLib> mtllibs;
@@ -179,19 +183,23 @@ void check_vertex_reference(string_view token, const char* what, const ObjSummar
     // Only the texture slot of "i//k" may be empty; tinyobjloader reads any other empty slot as index 0.
     if (parts[i].empty() && i == 1 && part_count == 3) continue;
     long long index = 0;
-    if (!parse_integer(parts[i], index))
+    const NumberStatus status = parse_integer(parts[i], index);
+    if (status == NumberStatus::not_a_number)
       fail_at(label, line, std::string("bad ") + what + " vertex '" + printable(token) + "' (not an integer index)");
-    if (index == 0)
-      fail_at(label, line, std::string(what) + slots[i].kind + " index 0 in '" + printable(token) +
-                               "' (OBJ indices start at 1)");
     const long long count = static_cast<long long>(slots[i].count);
-    if (index > count || index < -count)
-      fail_at(label, line, std::string(what) + slots[i].kind + " index " + std::to_string(index) +
-                               " out of range (file has " + std::to_string(count) + " " + slots[i].noun +
-                               " so far)");
+    if (status == NumberStatus::not_finite || index > count || index < -count)
+      fail_at(label, line,
+              std::string(what) + slots[i].kind + " index " + printable(parts[i]) + " out of range (file has " +
+                  std::to_string(count) + " " + slots[i].noun + " so far)");
+    if (index == 0)
+      fail_at(label, line,
+              std::string(what) + slots[i].kind + " index 0 in '" + printable(token) + "' (OBJ indices start at 1)");
     if (i == 2) has_normal = true;
   }
 }
+
+/// About 8 s of ear clipping on one core (see validate_obj).
+constexpr uint64_t kMaxTriangulationWork = 4'000'000'000;
 
 /// Vertex and triangle indices are int in tinyobjloader and uint32_t (with one reserved value) in Scene.
 constexpr uint64_t kMaxElements = 0x7fffffff;
@@ -270,6 +278,13 @@ ObjSummary validate_obj(string_view text, const std::string& label, const Memory
         fail_at(label, line, std::string(what) + " has " + std::to_string(count) + " vert" +
                                  (count == 1 ? "ex" : "ices") + " (needs at least " + std::to_string(minimum) + ")");
       if (keyword == "f") {
+        // Ear clipping takes time growing with k^2: 100000 vertices took 19 s, a million would take half an hour.
+        if (count > 4) s.triangulation_work += static_cast<uint64_t>(count) * count;
+        if (s.triangulation_work > kMaxTriangulationWork)
+          fail_at(label, line,
+                  "face has " + std::to_string(count) +
+                      " vertices: too large to triangulate in reasonable time (the squared vertex counts of "
+                      "large faces may add up to 4e9, one face of 63245 vertices)");
         s.expected_triangles += count - 2;
         if (!seen_usemtl) s.triangles_before_usemtl += count - 2;
         s.references_normals = s.references_normals || has_normal;
@@ -306,6 +321,10 @@ struct MtlEntry {
   bool single_value[3] = {false, false, false};  ///< Kd, Ks, Ke given as one grey value
 };
 
+/// The largest value an MTL statement may hold: albedos at most 1 (no surface reflects more light than it gets);
+/// emission and shininess capped far beyond real scenes, so that no estimate overflows float.
+float mtl_maximum(string_view keyword) { return keyword == "Kd" || keyword == "Ks" ? 1.0f : 1e6f; }
+
 /// Checks the Kd/Ks/Ke/Ns values of an MTL text (tinyobjloader silently reads junk as 0 and "Kd 0.5" as
 /// (0.5, 0, 0)); returns the materials in tinyobjloader's order so the one-value forms can be repaired.
 std::vector<MtlEntry> scan_mtl(const MtlSource& source, std::vector<std::string>& warnings) {
@@ -328,16 +347,26 @@ std::vector<MtlEntry> scan_mtl(const MtlSource& source, std::vector<std::string>
     string_view rest = raw.substr(3);
     const size_t wanted = slot < 0 ? 1 : 3;
     size_t given = 0;
+    const size_t warnings_before = warnings.size();
+    auto warn = [&](const std::string& message) {  // "Ke 1e39 1e39 1e39" is one problem, said once
+      if (std::find(warnings.begin() + static_cast<std::ptrdiff_t>(warnings_before), warnings.end(), message) ==
+          warnings.end())
+        warnings.push_back(message);
+    };
     for (string_view token = next_token(rest); !token.empty() && given < wanted; token = next_token(rest), ++given) {
       float value = 0.0f;
       const NumberStatus status = parse_float(token, value);
       const std::string where = source.label + ":" + std::to_string(line) + ": ";
       if (status != NumberStatus::ok) {
-        warnings.push_back(where + std::string(keyword) + " value '" + printable(token) + "' is not a " +
-                           (status == NumberStatus::not_finite ? "finite number" : "number") + ": using 0");
+        warn(where + std::string(keyword) + " value '" + printable(token) + "' is not a " +
+             (status == NumberStatus::not_finite ? "finite number" : "number") + ": using 0");
       } else if (value < 0.0f) {
-        warnings.push_back(where + "negative " + std::string(keyword) + " value " + printable(token) +
-                           " clamped to 0");
+        warn(where + "negative " + std::string(keyword) + " value " + printable(token) + " clamped to 0");
+      } else if (value > mtl_maximum(keyword)) {
+        char maximum[32];
+        std::snprintf(maximum, sizeof maximum, "%g", static_cast<double>(mtl_maximum(keyword)));
+        warn(where + std::string(keyword) + " value " + printable(token) + " above " + maximum + " clamped to " +
+             maximum);
       }
     }
     if (slot >= 0 && given == 1 && !entries.empty()) entries.back().single_value[slot] = true;
@@ -446,10 +475,11 @@ std::vector<MtlSource> read_mtl_files(const std::string& obj_path, const std::st
 
 // ---- conversion -------------------------------------------------------------------------------------------
 
-Vec3 clamp_non_negative(const Vec3& v) {
-  Vec3 out;
-  for (int i = 0; i < 3; ++i) out[i] = std::isfinite(v[i]) && v[i] > 0.0f ? v[i] : 0.0f;
-  return out;
+/// NaN and negative values become 0, values above `maximum` become `maximum`.
+float clamp_value(float v, float maximum) { return std::isfinite(v) && v > 0.0f ? std::min(v, maximum) : 0.0f; }
+
+Vec3 clamp_value(const Vec3& v, float maximum) {
+  return Vec3(clamp_value(v.x, maximum), clamp_value(v.y, maximum), clamp_value(v.z, maximum));
 }
 
 /// "1 triangle", "2 triangles".
@@ -532,14 +562,20 @@ LoadedScene build_scene(const std::string& obj_text, const std::string& label, c
   // File normals, normalised; unusable ones (zero, NaN, overflow) leave their corners on the geometric normal.
   const size_t normal_count = attrib.normals.size() / 3;
   std::vector<uint32_t> normal_remap(normal_count, kNoNormal);
+  size_t unusable_normals = 0;
   for (size_t i = 0; i < normal_count; ++i) {
     const Vec3 n(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]);
     const float length = glm::length(n);
     if (length > 0.0f && std::isfinite(length) && is_finite(n / length)) {
       normal_remap[i] = static_cast<uint32_t>(scene.normals.size());
       scene.normals.push_back(n / length);
+    } else {
+      ++unusable_normals;
     }
   }
+  if (unusable_normals > 0)
+    warnings.push_back(label + ": " + counted(unusable_normals, "unusable normal") +
+                       " (zero or not finite): the geometric normal is used there");
 
   // Materials: tinyobjloader also returns nameless ones (an empty MTL, a second mtllib); those are dropped and
   // their faces, like faces with material -1, get the grey default.
@@ -567,10 +603,10 @@ LoadedScene build_scene(const std::string& obj_text, const std::string& label, c
     }
     ++named;
     // The scan above already warned, with file and line, about every value clamped here.
-    material.kd = clamp_non_negative(material.kd);
-    material.ks = clamp_non_negative(material.ks);
-    material.ke = clamp_non_negative(material.ke);
-    material.ns = std::isfinite(material.ns) && material.ns > 0.0f ? material.ns : 0.0f;
+    material.kd = clamp_value(material.kd, mtl_maximum("Kd"));
+    material.ks = clamp_value(material.ks, mtl_maximum("Ks"));
+    material.ke = clamp_value(material.ke, mtl_maximum("Ke"));
+    material.ns = clamp_value(material.ns, mtl_maximum("Ns"));
     material_remap[i] = static_cast<int64_t>(scene.materials.size());
     known_names.insert(m.name);
     scene.materials.push_back(material);
@@ -615,7 +651,11 @@ LoadedScene build_scene(const std::string& obj_text, const std::string& label, c
     }
   }
 
-  if (scene.triangles.empty()) throw SceneError(label + ": no triangles");
+  if (scene.triangles.empty()) {
+    if (summary.expected_triangles > 0)
+      throw SceneError(label + ": no triangles: triangulating its faces gave none (degenerate polygons)");
+    throw SceneError(label + ": no triangles");
+  }
   if (scene.triangles.size() < summary.expected_triangles) {
     warnings.push_back(label + ": " + counted(summary.expected_triangles - scene.triangles.size(), "triangle") +
                        " of polygons lost in triangulation");
@@ -646,12 +686,29 @@ LoadedScene build_scene(const std::string& obj_text, const std::string& label, c
     }
   }
 
-  size_t zero_area = 0;
+  size_t zero_area = 0, zero_area_emitters = 0, overflowing = 0;
   for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
-    if (!(scene.area(t) > 0.0f)) ++zero_area;
+    const float area = scene.area(t);
+    if (!(area > 0.0f)) {
+      ++zero_area;
+      if (scene.material_of(t).emissive()) ++zero_area_emitters;
+    } else if (!std::isfinite(area)) {
+      ++overflowing;  // edges beyond about 1e19: their cross product overflows float
+    }
   }
-  if (zero_area > 0)
-    warnings.push_back(label + ": " + counted(zero_area, "zero-area triangle") + " (kept; never lights)");
+  if (zero_area > 0) {
+    std::string message = label + ": " + counted(zero_area, "zero-area triangle") + " (kept; never lights";
+    if (zero_area_emitters > 0) {
+      message += "; ";
+      message += std::to_string(zero_area_emitters);
+      message += " of them emissive";
+    }
+    message += ')';
+    warnings.push_back(message);
+  }
+  if (overflowing > 0)
+    warnings.push_back(label + ": " + counted(overflowing, "triangle") +
+                       " too large for float arithmetic (area overflows; kept, never lights)");
 
   // File normals are the author's; computed ones only stand in when there are none.
   if (!summary.references_normals) {
