@@ -36,13 +36,7 @@ class Cli : public ::testing::Test {
   std::string dir_;
 };
 
-/// Single-quotes a path for the shell. Built by appending: GCC 12 warns falsely (-Wrestrict) on "'" + string.
-std::string shell_quote(const std::string& path) {
-  std::string s = "'";
-  s += path;
-  s += "'";
-  return s;
-}
+using test::shell_quote;
 
 const char* kQuad =
     "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";

@@ -21,6 +21,13 @@
 namespace lueur {
 namespace {
 
+/// Loader options without computed normals: every triangle shaded with its geometric normal.
+LoadOptions flat_shading() {
+  LoadOptions options;
+  options.smooth_normals = false;
+  return options;
+}
+
 std::string write_text(const std::string& dir, const std::string& name, const std::string& text) {
   const std::string path = dir + "/" + name;
   std::ofstream out(path, std::ios::binary);
@@ -75,8 +82,8 @@ size_t count_with_material(const Scene& scene, const std::string& name) {
 
 TEST(SceneLoader, QuadBecomesTwoCounterClockwiseTriangles) {
   // Counter-clockwise seen from +Y: both triangles must face +Y and together cover the unit square.
-  const LoadedScene loaded = load_obj_from_text(
-      "v 0 0 0\nv 0 0 1\nv 1 0 1\nv 1 0 0\nf 1 2 3 4\n", "", "quad.obj", LoadOptions{false, 60.0f});
+  const LoadedScene loaded =
+      load_obj_from_text("v 0 0 0\nv 0 0 1\nv 1 0 1\nv 1 0 0\nf 1 2 3 4\n", "", "quad.obj", flat_shading());
   const Scene& scene = loaded.scene;
   EXPECT_EQ(scene.name, "quad");
   // The default light adds two more triangles above the quad.
@@ -261,7 +268,7 @@ TEST(SmoothNormals, LowPolySphereNormalsAreRadial) {
 }
 
 TEST(SmoothNormals, OffKeepsGeometricNormalsAndCreaseZeroIsFlat) {
-  const LoadedScene flat = load_obj_from_text(sphere_obj(8, 12, false), "", "sphere.obj", LoadOptions{false, 60.0f});
+  const LoadedScene flat = load_obj_from_text(sphere_obj(8, 12, false), "", "sphere.obj", flat_shading());
   EXPECT_TRUE(flat.scene.normals.empty());
   for (const Triangle& t : flat.scene.triangles) EXPECT_EQ(t.n[0], kNoNormal);
 

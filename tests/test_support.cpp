@@ -20,13 +20,29 @@ std::string make_temp_dir(const std::string& tag) {
   return base.string();
 }
 
-CommandResult run_lueur(const std::string& arguments) { return run_program(LUEUR_EXECUTABLE, arguments); }
+std::string shell_quote(const std::string& text) {
+  std::string quoted = "'";
+  for (const char c : text) {
+    if (c == '\'')
+      quoted += "'\\''";
+    else
+      quoted += c;
+  }
+  quoted += '\'';
+  return quoted;
+}
 
-CommandResult run_program(const std::string& executable, const std::string& arguments) {
+CommandResult run_lueur(const std::string& arguments, const std::string& prefix) {
+  return run_program(LUEUR_EXECUTABLE, arguments, prefix);
+}
+
+CommandResult run_program(const std::string& executable, const std::string& arguments, const std::string& prefix) {
   CommandResult result;
-  std::string command = "'";
-  command += executable;
-  command += "' ";
+  // Generous: sanitizer builds are several times slower than release ones.
+  std::string command = prefix;
+  command += " timeout 300 ";
+  command += shell_quote(executable);
+  command += ' ';
   command += arguments;
   command += " 2>&1";
   FILE* pipe = ::popen(command.c_str(), "r");

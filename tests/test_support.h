@@ -13,11 +13,16 @@ struct CommandResult {
   std::string output;  ///< stdout and stderr together
 };
 
-/// Runs `executable` with the given argument string through the shell.
-CommandResult run_program(const std::string& executable, const std::string& arguments);
+/// Runs `lueur` (the built executable) with the given argument string through the shell, under `timeout` so
+/// that a hang fails the test (exit code 124) instead of stalling the suite. `prefix` goes before the command:
+/// environment variables ("LUEUR_MEMORY_LIMIT_MB=64") or a wrapper command.
+CommandResult run_lueur(const std::string& arguments, const std::string& prefix = "");
 
-/// Runs `lueur` (the built executable) with the given argument string through the shell.
-CommandResult run_lueur(const std::string& arguments);
+/// Single-quotes a string for the shell (quotes inside it included).
+std::string shell_quote(const std::string& text);
+
+/// Runs any executable the same way (e.g. lueur-bench).
+CommandResult run_program(const std::string& executable, const std::string& arguments, const std::string& prefix = "");
 
 std::string read_file(const std::string& path);
 bool file_exists(const std::string& path);

@@ -9,7 +9,9 @@
 
 #include "app/scene_source.h"
 #include "core/atomic_file.h"
+#include "core/memory_budget.h"
 #include "render/image_output.h"
+#include "render/render_memory.h"
 #include "render/renderer.h"
 #include "scene/obj_loader.h"
 #include "ui/headless_screenshot.h"
@@ -32,6 +34,18 @@ void check_output_path(const std::string& path) {
   if (dir.empty()) dir = ".";
   if (!fs::is_directory(dir, ec)) throw IoError("cannot write '" + path + "': no directory '" + dir.string() + "'");
   if (::access(dir.c_str(), W_OK) != 0) throw IoError("cannot write '" + path + "': directory is not writable");
+}
+
+/// Refuses an image whose buffers the machine cannot hold, before anything is loaded or allocated; returns what
+/// is left of the budget for the scene.
+MemoryBudget reserve_render_memory(const RenderSettings& settings) {
+  const MemoryBudget budget = available_memory();
+  const uint64_t needed = render_memory_bytes(settings);
+  const std::string size = std::to_string(settings.width) + "x" + std::to_string(settings.height);
+  if (needed > budget.bytes)
+    throw UsageError("--size " + size + ": rendering needs about " + format_bytes(needed) +
+                     " of memory, more than the " + format_bytes(budget.bytes) + " available (" + budget.source + ")");
+  return {budget.bytes - needed, budget.source + ", less " + format_bytes(needed) + " for the " + size + " image"};
 }
 
 struct RunFigures {
@@ -81,8 +95,10 @@ void write_gl_screenshot(const AppOptions& options, const Film& film, const Trac
 int run_headless(const AppOptions& options) {
   check_output_path(options.out_path);
   const RenderSettings& settings = options.render;
+  const MemoryBudget scene_memory = reserve_render_memory(settings);
   const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
-  const OpenedScene opened = open_scene(options.scene_path, options.smooth_normals, aspect, options.accel);
+  const OpenedScene opened =
+      open_scene(options.scene_path, options.smooth_normals, aspect, scene_memory, options.accel);
   for (const std::string& w : opened.warnings) std::fprintf(stderr, "lueur: warning: %s\n", w.c_str());
 
   CameraSpec view = options.camera.value_or(opened.default_view);

@@ -13,7 +13,7 @@ SceneLoading::SceneLoading(std::string path, bool smooth_normals, float aspect, 
     std::optional<OpenedScene> result;
     std::string error;
     try {
-      result = open_scene(path_, smooth_normals, aspect, accel, [this](const std::string& stage) {
+      result = open_scene(path_, smooth_normals, aspect, available_memory(), accel, [this](const std::string& stage) {
         std::lock_guard lock(mutex_);
         stage_ = stage;
       });

@@ -5,8 +5,8 @@
 
 namespace lueur {
 
-OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect, AccelKind accel,
-                       const std::function<void(const std::string& stage)>& on_stage) {
+OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect, const MemoryBudget& memory,
+                       AccelKind accel, const std::function<void(const std::string& stage)>& on_stage) {
   const auto stage = [&](const std::string& what) {
     if (on_stage) on_stage(what);
   };
@@ -21,6 +21,7 @@ OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspec
     stage("reading " + path);
     LoadOptions load_options;
     load_options.smooth_normals = smooth_normals;
+    load_options.memory = memory;
     LoadedScene loaded = load_obj(path, load_options);
     scene = std::move(loaded.scene);
     opened.warnings = std::move(loaded.warnings);

@@ -1,13 +1,14 @@
 // Opens what the user asked for: an OBJ file or the embedded default scene, with its default view.
 #pragma once
 
+#include "app/options.h"
+#include "core/memory_budget.h"
+#include "render/traced_scene.h"
+
 #include <functional>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include "app/options.h"
-#include "render/traced_scene.h"
 
 namespace lueur {
 
@@ -18,9 +19,10 @@ struct OpenedScene {
 };
 
 /// Loads (or builds) the scene, applies the normal-smoothing option and prepares it for tracing with `accel`.
-/// Throws SceneError for a scene that cannot be used, AccelError for an accelerator this build lacks.
-/// `on_stage`, when given, is told each step as it starts (the window shows it while loading in the background).
-OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect, AccelKind accel = AccelKind::kLueur,
+/// Throws SceneError for a scene that cannot be used or one too large for `memory`, AccelError for an accelerator
+/// this build lacks. `on_stage`, when given, is told each step as it starts (the window shows it while loading).
+OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect, const MemoryBudget& memory,
+                       AccelKind accel = AccelKind::kLueur,
                        const std::function<void(const std::string& stage)>& on_stage = {});
 
 }  // namespace lueur

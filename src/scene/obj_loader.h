@@ -2,8 +2,11 @@
 // Depends on core and scene only; tinyobjloader stays inside obj_loader.cpp and never leaks into this header.
 #pragma once
 
+#include "core/memory_budget.h"
 #include "scene/scene.h"
 
+#include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -24,7 +27,15 @@ struct LoadOptions {
   bool smooth_normals = true;
   /// Faces meeting at a larger angle keep a sharp edge when normals are computed.
   float crease_degrees = 60.0f;
+  /// Memory the loaded scene may take; unset: available_memory(). A file whose size or running vertex and
+  /// triangle counts would need more is refused with "scene too large" while it is read.
+  std::optional<MemoryBudget> memory;
 };
+
+/// Bytes loading and preparing (BVH, light table) a scene of this size takes at its peak: a conservative
+/// figure, measured on large scenes. `text_bytes` is the size of the OBJ text.
+uint64_t scene_memory_bytes(uint64_t text_bytes, uint64_t vertices, uint64_t normals, uint64_t texcoords,
+                            uint64_t triangles);
 
 /// A loaded scene and what the loader repaired or guessed on the way (each a one-line message).
 struct LoadedScene {

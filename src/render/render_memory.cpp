@@ -1,0 +1,27 @@
+// The buffer sizes of render_frame, Film and write_image, per pixel.
+#include "render/render_memory.h"
+
+#include "render/indirect_light.h"
+#include "render/traced_scene.h"
+
+#include <algorithm>
+
+namespace lueur {
+
+uint64_t render_memory_bytes(const RenderSettings& settings) {
+  const uint64_t pixels =
+      static_cast<uint64_t>(std::max(settings.width, 0)) * static_cast<uint64_t>(std::max(settings.height, 0));
+  const std::array<bool, kLayerCount> needed = layers_needed(settings);
+  const uint64_t layers = static_cast<uint64_t>(std::count(needed.begin(), needed.end(), true));
+  constexpr uint64_t kRgb = 3 * sizeof(float);
+
+  const uint64_t film = layers * kRgb;
+  // render_frame: per-layer values, the primary hits and the screen buffer L2 reuses.
+  const uint64_t frame = layers * sizeof(Vec3) + sizeof(SurfacePoint) + sizeof(uint32_t) + 3 * sizeof(Vec3);
+  // Saving: every layer averaged, the shown image, and the EXR channel planes, its encoder's copy and its output.
+  const uint64_t output = layers * kRgb + kRgb + 3 * (layers + 1) * kRgb;
+  constexpr uint64_t kProcess = uint64_t{64} << 20;  // code, thread stacks, allocator slack
+  return pixels * (film + std::max(frame, output)) + kProcess;
+}
+
+}  // namespace lueur

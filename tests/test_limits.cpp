@@ -1,0 +1,185 @@
+// Limits: work too large for the machine's memory is refused up front with a message that says so (image sizes,
+// scene files and their vertex and triangle counts), and the memory budget behind that is read correctly.
+#include "core/memory_budget.h"
+#include "render/render_memory.h"
+#include "scene/obj_loader.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+
+namespace lueur {
+namespace {
+
+/// Sets an environment variable for one scope.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) { ::setenv(name, value, 1); }
+  ~ScopedEnv() { ::unsetenv(name_); }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  const char* name_;
+};
+
+TEST(MemoryBudget, ParsesMemAvailable) {
+  EXPECT_EQ(parse_meminfo_available("MemTotal:       24683620 kB\nMemFree:  100 kB\nMemAvailable:   2048 kB\n"),
+            uint64_t{2048} * 1024);
+  EXPECT_EQ(parse_meminfo_available("MemAvailable: 7 kB"), uint64_t{7} * 1024);
+  EXPECT_FALSE(parse_meminfo_available("MemTotal: 10 kB\n"));
+  EXPECT_FALSE(parse_meminfo_available("MemAvailable: lots\n"));
+  EXPECT_FALSE(parse_meminfo_available("MemAvailable: 12 pages\n"));
+  EXPECT_FALSE(parse_meminfo_available("XMemAvailable: 12 kB\n"));
+}
+
+TEST(MemoryBudget, TheMachineHasSomeAndTheUserCanCapIt) {
+  const MemoryBudget machine = available_memory();
+  EXPECT_GT(machine.bytes, uint64_t{16} << 20) << machine.source;
+  EXPECT_LT(machine.bytes, std::numeric_limits<uint64_t>::max()) << "no memory figure found at all";
+  {
+    ScopedEnv cap("LUEUR_MEMORY_LIMIT_MB", "3");
+    const MemoryBudget capped = available_memory();
+    EXPECT_EQ(capped.bytes, uint64_t{3} << 20);
+    EXPECT_EQ(capped.source, "LUEUR_MEMORY_LIMIT_MB");
+  }
+  for (const char* bad : {"0", "-5", "lots", "12MB", "99999999999999999999"}) {
+    ScopedEnv cap("LUEUR_MEMORY_LIMIT_MB", bad);
+    EXPECT_THROW(available_memory(), std::invalid_argument) << bad;
+  }
+}
+
+TEST(MemoryBudget, FormatsBytesForMessages) {
+  EXPECT_EQ(format_bytes(512), "512 bytes");
+  EXPECT_EQ(format_bytes(1536), "1.5 KiB");
+  EXPECT_EQ(format_bytes(uint64_t{3} << 30), "3.0 GiB");
+  EXPECT_EQ(format_bytes(std::numeric_limits<uint64_t>::max()), "16.0 EiB");
+}
+
+TEST(RenderMemory, GrowsWithPixelsAndLayers) {
+  RenderSettings small;
+  small.width = small.height = 16;
+  RenderSettings big = small;
+  big.width = big.height = 1024;
+  EXPECT_GT(render_memory_bytes(big), render_memory_bytes(small));
+  RenderSettings all_passes = big;
+  all_passes.enabled = {true, true, true, true};
+  EXPECT_GT(render_memory_bytes(all_passes), render_memory_bytes(big));
+  // At least the film itself: 3 floats per pixel and layer.
+  const uint64_t pixels = 1024 * 1024;
+  EXPECT_GE(render_memory_bytes(all_passes), pixels * 7 * 12);
+  RenderSettings largest = all_passes;
+  largest.width = largest.height = 16384;
+  EXPECT_GT(render_memory_bytes(largest), uint64_t{60} << 30);
+}
+
+TEST(SceneMemory, NeverWrapsAround) {
+  const uint64_t huge = std::numeric_limits<uint64_t>::max() / 2;
+  EXPECT_EQ(scene_memory_bytes(huge, 0, 0, 0, 0), std::numeric_limits<uint64_t>::max());
+  EXPECT_EQ(scene_memory_bytes(1, 1, 1, 1, huge), std::numeric_limits<uint64_t>::max());
+  EXPECT_LT(scene_memory_bytes(1000, 10, 0, 0, 10), uint64_t{1} << 20);
+}
+
+std::string grid_obj(int n) {
+  std::string obj;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      obj += "v ";
+      obj += std::to_string(i);
+      obj += ' ';
+      obj += std::to_string(j);
+      obj += " 0\n";
+    }
+  for (int i = 0; i + 1 < n; ++i)
+    for (int j = 0; j + 1 < n; ++j) {
+      const int a = i * n + j + 1;
+      obj += "f " + std::to_string(a) + " " + std::to_string(a + 1) + " " + std::to_string(a + n + 1) + " " +
+             std::to_string(a + n) + "\n";
+    }
+  return obj;
+}
+
+TEST(SceneBudget, TooManyVerticesForTheBudgetIsRefusedAtTheLine) {
+  const std::string obj = grid_obj(100);  // 10000 vertices, 19602 triangles
+  LoadOptions options;
+  EXPECT_EQ(load_obj_from_text(obj, "", "grid.obj", options).scene.triangles.size(), 19602u + 2u);
+  options.memory = MemoryBudget{scene_memory_bytes(obj.size(), 5000, 0, 0, 0), "a test budget"};
+  try {
+    load_obj_from_text(obj, "", "grid.obj", options);
+    ADD_FAILURE() << "loaded a scene over its budget";
+  } catch (const SceneError& e) {
+    const std::string message = e.what();
+    // Vertex 5001 is on line 5001: the first one over the budget.
+    EXPECT_EQ(
+        message.rfind("grid.obj:5001: scene too large: 5001 vertices and 0 triangles by this line need about ", 0), 0u)
+        << message;
+    EXPECT_NE(message.find("available (a test budget)"), std::string::npos) << message;
+  }
+}
+
+TEST(SceneBudget, AFileLargerThanTheBudgetIsRefusedBeforeReading) {
+  const std::string dir = test::make_temp_dir("limits-file");
+  const std::string path = dir + "/big.obj";
+  std::ofstream(path) << grid_obj(50);
+  LoadOptions options;
+  options.memory = MemoryBudget{1000, "a test budget"};
+  try {
+    load_obj(path, options);
+    ADD_FAILURE() << "loaded a file over its budget";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ": scene too large: a "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(" file needs about "), std::string::npos) << e.what();
+  }
+}
+
+TEST(CliLimits, ImageLargerThanTheMemoryCapIsRefusedUpFront) {
+  const std::string dir = test::make_temp_dir("limits-cli");
+  const std::string out = dir + "/big.exr";
+  const test::CommandResult r = test::run_lueur(
+      "--headless --size 4096x4096 --frames 1 --out " + test::shell_quote(out), "LUEUR_MEMORY_LIMIT_MB=100");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("lueur: error: --size 4096x4096: rendering needs about "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("more than the 100.0 MiB available (LUEUR_MEMORY_LIMIT_MB)"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("frame 1/1"), std::string::npos) << "refused after rendering: " << r.output;
+  EXPECT_FALSE(test::file_exists(out));
+
+  // The same cap leaves room for a small image.
+  const test::CommandResult ok =
+      test::run_lueur("--headless --size 32x32 --frames 1 --l1-rays 1 --l2-rays 1 --out " + test::shell_quote(out),
+                      "LUEUR_MEMORY_LIMIT_MB=100");
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
+}
+
+TEST(CliLimits, LargestImageIsRefusedWhereTheMachineCannotHoldIt) {
+  RenderSettings largest;
+  largest.width = largest.height = 16384;
+  largest.enabled = {true, true, true, true};
+  if (render_memory_bytes(largest) <= available_memory().bytes)
+    GTEST_SKIP() << "this machine has room for a 16384x16384 render";
+  const std::string dir = test::make_temp_dir("limits-machine");
+  const test::CommandResult r = test::run_lueur("--headless --size 16384x16384 --passes le,l1,l2,ao --frames 1 --out " +
+                                                test::shell_quote(dir + "/huge.exr"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("rendering needs about "), std::string::npos) << r.output;
+  EXPECT_FALSE(test::file_exists(dir + "/huge.exr"));
+}
+
+TEST(CliLimits, SceneLargerThanWhatTheImageLeavesIsRefused) {
+  const std::string dir = test::make_temp_dir("limits-scene");
+  const std::string scene = dir + "/grid.obj";
+  std::ofstream(scene) << grid_obj(300);  // 90000 vertices, about 2.3 MB
+  const std::string out = dir + "/out.png";
+  const test::CommandResult r =
+      test::run_lueur(test::shell_quote(scene) + " --headless --size 16x16 --frames 1 --out " + test::shell_quote(out),
+                      "LUEUR_MEMORY_LIMIT_MB=70");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("scene too large: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("less 64.1 MiB for the 16x16 image"), std::string::npos) << r.output;
+  EXPECT_FALSE(test::file_exists(out));
+}
+
+}  // namespace
+}  // namespace lueur
