@@ -1,16 +1,17 @@
 // Tests for Lueur's BVH: closest and any hit against a brute-force loop over several scenes and many rays, the
 // tree invariants, and degenerate inputs. Depends on bvh and core only (no scene loading, no renderer).
 
-#include "bvh/bvh.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <random>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "bvh/bvh.h"
 
 namespace lueur {
 namespace {
@@ -591,6 +592,25 @@ TEST(BvhVersusBruteForce, ThousandCopiesOfOneTriangle) {
 }
 
 TEST(BvhVersusBruteForce, ClosedSphere) { run_scene({"sphere", make_sphere(40, 80, 3.0f), kSphereRays}, 106); }
+
+// The tests above trace the tree this CPU gets (8-wide AVX when it has AVX); these check the 4-wide SSE kernels,
+// which CPUs without AVX run, against brute force on any machine.
+TEST(BvhVersusBruteForce, SseKernelsOnAnyMachine) {
+  std::mt19937 rng(7);
+  const Corners soup = make_soup(rng, 2000);
+  const Corners sphere = make_sphere(40, 80, 3.0f);
+  const Bvh default_soup = build_bvh(soup);
+  EXPECT_EQ(default_soup.wide8_nodes.empty(), !bvh_avx_enabled());
+  ::setenv("LUEUR_BVH_ISA", "sse", 1);
+  const Bvh sse_soup = build_bvh(soup);
+  const Bvh sse_sphere = build_bvh(sphere);
+  ::unsetenv("LUEUR_BVH_ISA");
+  ASSERT_TRUE(sse_soup.wide8_nodes.empty());
+  ASSERT_FALSE(sse_soup.wide_nodes.empty());
+  const RayStats a = compare_with_brute_force(soup, sse_soup, 10000, 108);
+  const RayStats b = compare_with_brute_force(sphere, sse_sphere, 10000, 109);
+  EXPECT_GT(a.hits + b.hits, (a.rays + b.rays) / 10);
+}
 
 }  // namespace
 }  // namespace lueur

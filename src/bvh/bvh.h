@@ -40,6 +40,15 @@ struct alignas(64) BvhWideNode {
   uint32_t count[kBvhWidth];  ///< 0: inner child (or unused slot); n > 0: a leaf of n triangle groups
 };
 
+/// The same with eight children, traversed with AVX when the CPU has it (bvh_avx_enabled).
+inline constexpr uint32_t kBvhWidth8 = 8;
+struct alignas(64) BvhWideNode8 {
+  float lo[3][kBvhWidth8];
+  float hi[3][kBvhWidth8];
+  uint32_t child[kBvhWidth8];
+  uint32_t count[kBvhWidth8];
+};
+
 /// Four triangles structure-of-arrays (v0[axis][lane], ...), tested together. Unused lanes have zero edges (never
 /// hit) and id kNoHit.
 struct alignas(16) BvhTriangleGroup {
@@ -52,19 +61,27 @@ struct alignas(16) BvhTriangleGroup {
 struct Bvh {
   std::vector<BvhNode> nodes;          ///< the binned-SAH BVH2; nodes[0] is the root
   std::vector<BvhTriangle> triangles;  ///< reordered once after the build so leaves read them directly
-  /// What the queries traverse: the BVH2 collapsed into a 4-wide tree (wide_nodes[0] is the root) over leaves of
-  /// triangle groups. The BVH2 above is kept as the build's record (tests check its invariants).
+  /// What the queries traverse: the BVH2 collapsed into a 4-wide tree (wide_nodes[0] is the root), or an 8-wide one
+  /// (wide8_nodes) when the CPU has AVX, over leaves of triangle groups. The BVH2 above is kept as the build's
+  /// record (tests check its invariants).
   std::vector<BvhWideNode> wide_nodes;
+  std::vector<BvhWideNode8> wide8_nodes;
   std::vector<BvhTriangleGroup> groups;
   bool empty() const { return triangles.empty(); }
   /// Bytes the queries read: the wide nodes and the triangle groups.
   size_t traversal_bytes() const {
-    return wide_nodes.size() * sizeof(BvhWideNode) + groups.size() * sizeof(BvhTriangleGroup);
+    return wide_nodes.size() * sizeof(BvhWideNode) + wide8_nodes.size() * sizeof(BvhWideNode8) +
+           groups.size() * sizeof(BvhTriangleGroup);
   }
 };
 
-/// Collapses `bvh.nodes` into `bvh.wide_nodes` and `bvh.groups` (called by build_bvh).
+/// Collapses `bvh.nodes` into `bvh.wide8_nodes` (when bvh_avx_enabled) or `bvh.wide_nodes`, and `bvh.groups`
+/// (called by build_bvh).
 void build_wide_bvh(Bvh& bvh);
+
+/// Whether builds make the 8-wide AVX tree: the CPU has AVX and the environment does not say LUEUR_BVH_ISA=sse
+/// (which tests use to check the 4-wide SSE kernels on any machine).
+bool bvh_avx_enabled();
 
 /// Prepares triangle (a, b, c) for intersection: v0 = a, e1 = b - a, e2 = c - a. A zero-area triangle (edge cross
 /// product exactly zero: repeated or collinear vertices) gets zero edges, so its determinant is exactly 0 for every

@@ -2,6 +2,8 @@
 // BVH2 node and keeps opening its largest inner child until it has four, and each leaf's triangles are packed
 // four to a group, structure-of-arrays. Depends on bvh.h only.
 #include <array>
+#include <cstdlib>
+#include <cstring>
 
 #include "bvh/bvh.h"
 
@@ -10,21 +12,20 @@ namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
-/// A slot of the wide node being filled: one BVH2 node that becomes a child (inner or leaf).
-using Slots = std::array<uint32_t, kBvhWidth>;
-
-void set_slot_box(BvhWideNode& node, uint32_t slot, const BvhNode& child) {
+template <typename Node>
+void set_slot_box(Node& node, uint32_t slot, const BvhNode& child) {
   for (int axis = 0; axis < 3; ++axis) {
     node.lo[axis][slot] = child.lo[axis];
     node.hi[axis][slot] = child.hi[axis];
   }
 }
 
-BvhWideNode empty_wide_node() {
-  BvhWideNode node;
+template <typename Node, uint32_t W>
+Node empty_wide_node() {
+  Node node;
   for (int axis = 0; axis < 3; ++axis)
-    for (uint32_t k = 0; k < kBvhWidth; ++k) node.lo[axis][k] = node.hi[axis][k] = kNaN;
-  for (uint32_t k = 0; k < kBvhWidth; ++k) node.child[k] = node.count[k] = 0;
+    for (uint32_t k = 0; k < W; ++k) node.lo[axis][k] = node.hi[axis][k] = kNaN;
+  for (uint32_t k = 0; k < W; ++k) node.child[k] = node.count[k] = 0;
   return node;
 }
 
@@ -53,13 +54,10 @@ uint32_t pack_leaf(Bvh& bvh, const BvhNode& leaf, uint32_t& group_count) {
   return first;
 }
 
-}  // namespace
-
-void build_wide_bvh(Bvh& bvh) {
-  bvh.wide_nodes.clear();
-  bvh.groups.clear();
-  if (bvh.nodes.empty()) return;
-  bvh.wide_nodes.reserve(bvh.nodes.size() / 2 + 1);
+/// The collapse into nodes of W children.
+template <typename Node, uint32_t W>
+void collapse(Bvh& bvh, std::vector<Node>& wide_nodes) {
+  wide_nodes.reserve(bvh.nodes.size() / (W / 2) + 1);
   bvh.groups.reserve(bvh.triangles.size() / 2 + 1);
 
   // Each task fills wide node `wide` from the BVH2 node `source` (an inner node, or a leaf root).
@@ -67,12 +65,12 @@ void build_wide_bvh(Bvh& bvh) {
     uint32_t wide, source;
   };
   std::vector<Task> tasks{{0, 0}};
-  bvh.wide_nodes.push_back(empty_wide_node());
+  wide_nodes.push_back(empty_wide_node<Node, W>());
   while (!tasks.empty()) {
     const Task task = tasks.back();
     tasks.pop_back();
     const BvhNode& source = bvh.nodes[task.source];
-    Slots slots{};
+    std::array<uint32_t, W> slots{};
     uint32_t used = 0;
     if (source.count > 0) {
       slots[used++] = task.source;  // a BVH2 that is one leaf: the root holds it as its only child
@@ -80,7 +78,7 @@ void build_wide_bvh(Bvh& bvh) {
       slots[used++] = source.first;
       slots[used++] = source.first + 1;
       // Open the inner child of largest area: the one a ray is most likely to enter.
-      while (used < kBvhWidth) {
+      while (used < W) {
         int best = -1;
         float best_area = -1.0f;
         for (uint32_t k = 0; k < used; ++k) {
@@ -102,19 +100,38 @@ void build_wide_bvh(Bvh& bvh) {
     }
     for (uint32_t k = 0; k < used; ++k) {
       const BvhNode& child = bvh.nodes[slots[k]];
-      BvhWideNode& node = bvh.wide_nodes[task.wide];  // taken again each time: the push below may move it
+      Node& node = wide_nodes[task.wide];  // taken again each time: the push below may move it
       set_slot_box(node, k, child);
       if (child.count > 0) {
         node.child[k] = pack_leaf(bvh, child, node.count[k]);
         continue;
       }
-      const auto index = static_cast<uint32_t>(bvh.wide_nodes.size());
+      const auto index = static_cast<uint32_t>(wide_nodes.size());
       node.child[k] = index;
       node.count[k] = 0;
       tasks.push_back({index, slots[k]});
-      bvh.wide_nodes.push_back(empty_wide_node());
+      wide_nodes.push_back(empty_wide_node<Node, W>());
     }
   }
+}
+
+}  // namespace
+
+bool bvh_avx_enabled() {
+  const char* isa = std::getenv("LUEUR_BVH_ISA");
+  if (isa && std::strcmp(isa, "sse") == 0) return false;
+  return __builtin_cpu_supports("avx");
+}
+
+void build_wide_bvh(Bvh& bvh) {
+  bvh.wide_nodes.clear();
+  bvh.wide8_nodes.clear();
+  bvh.groups.clear();
+  if (bvh.nodes.empty()) return;
+  if (bvh_avx_enabled())
+    collapse<BvhWideNode8, kBvhWidth8>(bvh, bvh.wide8_nodes);
+  else
+    collapse<BvhWideNode, kBvhWidth>(bvh, bvh.wide_nodes);
 }
 
 }  // namespace lueur

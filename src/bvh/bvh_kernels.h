@@ -1,0 +1,227 @@
+// The ray-triangle and ray-box kernels shared by the traversals of Lueur's BVH: the scalar reference test, and its
+// 4-lane SSE form. Internal to src/bvh: everything has internal linkage, because the AVX translation unit compiles
+// the same functions with other instruction-set flags and the two copies must never be merged by the linker.
+#pragma once
+
+#include <emmintrin.h>  // SSE2 only: x86-64's baseline, so Debug builds without -march compile it too
+
+#include <bit>
+#include <cstddef>
+
+#include "bvh/bvh.h"
+
+namespace lueur {
+namespace {
+
+// Direction components smaller than this are replaced by it (keeping the sign) before inverting, so the slab test
+// never computes 0 * inf = NaN. A ray parallel to a slab then gets a finite span along that axis (about 1e30 times
+// its distance to the slab), which only matters for hits farther away than that.
+constexpr float kTinyDirection = 1e-30f;
+// Box exits are scaled up by a few ulps so that rounding in the slab test cannot reject a box the ray touches.
+constexpr float kExitScale = 1.0f + 4.0f * std::numeric_limits<float>::epsilon();
+
+// Hits are only reported inside a box around the triangle a few ulps wider than its vertices, so that rays grazing
+// a shared edge see the same candidates as without the box.
+constexpr float kTrianglePadding = 4.0f * std::numeric_limits<float>::epsilon();
+
+// Compile to minss/maxss; no NaN reaches them (safe inverse directions, finite boxes) except a NaN t, handled below.
+inline float min_f(float a, float b) { return a < b ? a : b; }
+inline float max_f(float a, float b) { return a > b ? a : b; }
+
+inline float safe_inverse(float d) {
+  return 1.0f / (std::fabs(d) < kTinyDirection ? std::copysign(kTinyDirection, d) : d);
+}
+
+inline Vec3 safe_inverse(const Vec3& d) { return Vec3(safe_inverse(d.x), safe_inverse(d.y), safe_inverse(d.z)); }
+
+/// Slab test: the span [entry, exit] of the ray's line inside the box, not yet limited to the ray's interval. Each
+/// bound is monotone in the box, so a box inside another gets a span inside the other's: the BVH's exact agreement
+/// with the brute-force loop rests on the node test and the triangle clamp both using this function.
+inline void slab_span(const Vec3& lo, const Vec3& hi, const Vec3& origin, const Vec3& inv_dir, float& entry,
+                      float& exit) {
+  const float tx0 = (lo.x - origin.x) * inv_dir.x;
+  const float tx1 = (hi.x - origin.x) * inv_dir.x;
+  const float ty0 = (lo.y - origin.y) * inv_dir.y;
+  const float ty1 = (hi.y - origin.y) * inv_dir.y;
+  const float tz0 = (lo.z - origin.z) * inv_dir.z;
+  const float tz1 = (hi.z - origin.z) * inv_dir.z;
+  entry = max_f(max_f(min_f(tx0, tx1), min_f(ty0, ty1)), min_f(tz0, tz1));
+  exit = min_f(min_f(max_f(tx0, tx1), max_f(ty0, ty1)), max_f(tz0, tz1)) * kExitScale;
+}
+
+/// What every box test of one ray needs, computed once per query.
+struct RayData {
+  Vec3 origin;
+  Vec3 dir;
+  Vec3 inv_dir;
+  float tmin;
+  float tmax;
+  explicit RayData(const Ray& ray)
+      : origin(ray.origin), dir(ray.dir), inv_dir(safe_inverse(ray.dir)), tmin(ray.tmin), tmax(ray.tmax) {}
+};
+
+/// True if the ray meets the node box at some t in [tmin, t_limit]; `entry` is the tmin-clamped entry distance.
+/// The limit is inclusive so that an equally distant triangle with a lower id is still found.
+inline bool hit_box(const BvhNode& node, const RayData& r, float t_limit, float& entry) {
+  float box_entry, box_exit;
+  slab_span(node.lo, node.hi, r.origin, r.inv_dir, box_entry, box_exit);
+  entry = max_f(box_entry, r.tmin);
+  return entry <= box_exit && entry <= t_limit;
+}
+
+inline Box3 triangle_box(const Vec3& v0, const Vec3& e1, const Vec3& e2) {
+  const Vec3 v1 = v0 + e1;
+  const Vec3 v2 = v0 + e2;
+  const Vec3 lo = glm::min(glm::min(v0, v1), v2);
+  const Vec3 hi = glm::max(glm::max(v0, v1), v2);
+  const Vec3 pad(kTrianglePadding * std::max(max_abs_component(lo), max_abs_component(hi)));
+  Box3 box;
+  box.lo = lo - pad;
+  box.hi = hi + pad;
+  return box;
+}
+
+/// Möller–Trumbore without the range test on t.
+inline bool moller_trumbore(const Vec3& origin, const Vec3& dir, const Vec3& v0, const Vec3& e1, const Vec3& e2,
+                            float& t, float& u, float& v) {
+  const Vec3 p = glm::cross(dir, e2);
+  const float det = glm::dot(e1, p);
+  // Exactly zero: the ray is parallel to the plane or the triangle has no area. Non-finite: overflowing edges.
+  if (det == 0.0f || !std::isfinite(det)) return false;
+  const float inv_det = 1.0f / det;
+  const Vec3 s = origin - v0;
+  u = glm::dot(s, p) * inv_det;
+  // Written so that a NaN (inv_det overflowing on a denormal determinant) is rejected.
+  if (!(u >= 0.0f && u <= 1.0f)) return false;
+  const Vec3 q = glm::cross(s, e1);
+  v = glm::dot(dir, q) * inv_det;
+  if (!(v >= 0.0f && u + v <= 1.0f)) return false;
+  t = glm::dot(e2, q) * inv_det;
+  return true;
+}
+
+/// Moves a Möller–Trumbore t into the ray's span inside the triangle's box. Only runs on the rare candidate hits.
+/// The t of an ill-conditioned determinant (slivers, grazing rays) can land far from the triangle; the true hit
+/// lies inside the box, so the clamp only ever brings t closer to it.
+inline bool clamp_to_triangle_box(const Vec3& origin, const Vec3& inv_dir, const Vec3& v0, const Vec3& e1,
+                                  const Vec3& e2, float& t) {
+  const Box3 box = triangle_box(v0, e1, e2);
+  float entry, exit;
+  slab_span(box.lo, box.hi, origin, inv_dir, entry, exit);
+  if (!(entry <= exit)) return false;
+  t = min_f(max_f(t, entry), exit);  // a NaN t becomes `entry`
+  return true;
+}
+
+/// The whole shared test; the BVH passes its precomputed inverse direction, which is bit-identical to the one
+/// intersect_triangle computes.
+inline bool triangle_hit(const Vec3& origin, const Vec3& dir, const Vec3& inv_dir, const BvhTriangle& tri, float& t,
+                         float& u, float& v) {
+  return moller_trumbore(origin, dir, tri.v0, tri.e1, tri.e2, t, u, v) &&
+         clamp_to_triangle_box(origin, inv_dir, tri.v0, tri.e1, tri.e2, t);
+}
+
+// ---- the 4-wide kernels -----------------------------------------------------------------------------------------
+// Each lane computes exactly what the scalar functions above compute, operation for operation (SSE min/max return
+// their second operand on NaN, like min_f/max_f; no FMA is involved), so the BVH stays bit-identical to the
+// brute-force loop over intersect_triangle.
+
+/// The ray, broadcast to four lanes.
+struct RayLanes {
+  __m128 ox, oy, oz, dx, dy, dz, ix, iy, iz, tmin;
+  explicit RayLanes(const RayData& r)
+      : ox(_mm_set1_ps(r.origin.x)),
+        oy(_mm_set1_ps(r.origin.y)),
+        oz(_mm_set1_ps(r.origin.z)),
+        dx(_mm_set1_ps(r.dir.x)),
+        dy(_mm_set1_ps(r.dir.y)),
+        dz(_mm_set1_ps(r.dir.z)),
+        ix(_mm_set1_ps(r.inv_dir.x)),
+        iy(_mm_set1_ps(r.inv_dir.y)),
+        iz(_mm_set1_ps(r.inv_dir.z)),
+        tmin(_mm_set1_ps(r.tmin)) {}
+};
+
+/// hit_box on the four children of a node: bit k of the result says whether child k may hold a hit no farther
+/// than t_limit; entry receives the tmin-clamped entry distances.
+inline int hit_boxes(const BvhWideNode& node, const RayLanes& r, __m128 t_limit, __m128& entry) {
+  const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lo[0]), r.ox), r.ix);
+  const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.hi[0]), r.ox), r.ix);
+  const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lo[1]), r.oy), r.iy);
+  const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.hi[1]), r.oy), r.iy);
+  const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lo[2]), r.oz), r.iz);
+  const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.hi[2]), r.oz), r.iz);
+  const __m128 box_entry = _mm_max_ps(_mm_max_ps(_mm_min_ps(tx0, tx1), _mm_min_ps(ty0, ty1)), _mm_min_ps(tz0, tz1));
+  const __m128 box_exit =
+      _mm_mul_ps(_mm_min_ps(_mm_min_ps(_mm_max_ps(tx0, tx1), _mm_max_ps(ty0, ty1)), _mm_max_ps(tz0, tz1)),
+                 _mm_set1_ps(kExitScale));
+  entry = _mm_max_ps(box_entry, r.tmin);
+  return _mm_movemask_ps(_mm_and_ps(_mm_cmple_ps(entry, box_exit), _mm_cmple_ps(entry, t_limit)));
+}
+
+/// Möller–Trumbore on four triangles without the range test on t: bit k says lane k passed (det nonzero and
+/// finite, u, v inside); t, u, v receive every lane's values.
+inline int moller_trumbore4(const BvhTriangleGroup& g, const RayLanes& r, __m128& t, __m128& u, __m128& v) {
+  const __m128 e1x = _mm_load_ps(g.e1[0]), e1y = _mm_load_ps(g.e1[1]), e1z = _mm_load_ps(g.e1[2]);
+  const __m128 e2x = _mm_load_ps(g.e2[0]), e2y = _mm_load_ps(g.e2[1]), e2z = _mm_load_ps(g.e2[2]);
+  // p = cross(dir, e2), written as glm::cross writes it.
+  const __m128 px = _mm_sub_ps(_mm_mul_ps(r.dy, e2z), _mm_mul_ps(e2y, r.dz));
+  const __m128 py = _mm_sub_ps(_mm_mul_ps(r.dz, e2x), _mm_mul_ps(e2z, r.dx));
+  const __m128 pz = _mm_sub_ps(_mm_mul_ps(r.dx, e2y), _mm_mul_ps(e2x, r.dy));
+  // glm::dot sums x, y, then z.
+  const __m128 det = _mm_add_ps(_mm_add_ps(_mm_mul_ps(e1x, px), _mm_mul_ps(e1y, py)), _mm_mul_ps(e1z, pz));
+  const __m128 abs_det = _mm_andnot_ps(_mm_set1_ps(-0.0f), det);
+  __m128 ok = _mm_and_ps(_mm_cmpneq_ps(det, _mm_setzero_ps()), _mm_cmplt_ps(abs_det, _mm_set1_ps(kInfinity)));
+  if (_mm_movemask_ps(ok) == 0) return 0;
+  const __m128 inv_det = _mm_div_ps(_mm_set1_ps(1.0f), det);
+  const __m128 sx = _mm_sub_ps(r.ox, _mm_load_ps(g.v0[0]));
+  const __m128 sy = _mm_sub_ps(r.oy, _mm_load_ps(g.v0[1]));
+  const __m128 sz = _mm_sub_ps(r.oz, _mm_load_ps(g.v0[2]));
+  u = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(sx, px), _mm_mul_ps(sy, py)), _mm_mul_ps(sz, pz)), inv_det);
+  const __m128 one = _mm_set1_ps(1.0f), zero = _mm_setzero_ps();
+  ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpge_ps(u, zero), _mm_cmple_ps(u, one)));
+  if (_mm_movemask_ps(ok) == 0) return 0;
+  // q = cross(s, e1)
+  const __m128 qx = _mm_sub_ps(_mm_mul_ps(sy, e1z), _mm_mul_ps(e1y, sz));
+  const __m128 qy = _mm_sub_ps(_mm_mul_ps(sz, e1x), _mm_mul_ps(e1z, sx));
+  const __m128 qz = _mm_sub_ps(_mm_mul_ps(sx, e1y), _mm_mul_ps(e1x, sy));
+  v = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(r.dx, qx), _mm_mul_ps(r.dy, qy)), _mm_mul_ps(r.dz, qz)), inv_det);
+  ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpge_ps(v, zero), _mm_cmple_ps(_mm_add_ps(u, v), one)));
+  const int mask = _mm_movemask_ps(ok);
+  if (mask == 0) return 0;
+  t = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(e2x, qx), _mm_mul_ps(e2y, qy)), _mm_mul_ps(e2z, qz)), inv_det);
+  return mask;
+}
+
+inline float lane(__m128 x, uint32_t k) {
+  alignas(16) float values[4];
+  _mm_store_ps(values, x);
+  return values[k];
+}
+
+/// The rest of triangle_hit for one lane that passed Möller–Trumbore: the clamp into the triangle's box, then the
+/// ray's open interval.
+inline bool finish_lane(const RayData& r, const BvhTriangleGroup& g, uint32_t k, float& t) {
+  const Vec3 v0(g.v0[0][k], g.v0[1][k], g.v0[2][k]);
+  const Vec3 e1(g.e1[0][k], g.e1[1][k], g.e1[2][k]);
+  const Vec3 e2(g.e2[0][k], g.e2[1][k], g.e2[2][k]);
+  return clamp_to_triangle_box(r.origin, r.inv_dir, v0, e1, e2, t) && t > r.tmin && t < r.tmax;
+}
+
+/// A node or leaf waiting on the traversal stack, with the distance at which the ray enters it.
+struct StackEntry {
+  uint32_t child, count;
+  float entry;
+};
+
+// Each wide node visited pushes at most kBvhWidth - 1 entries, and no path is deeper than kBvhMaxDepth.
+constexpr uint32_t kStackSize = (kBvhWidth - 1) * kBvhMaxDepth + 1;
+
+}  // namespace
+
+/// The traversals of the 8-wide tree (bvh_traverse_avx.cpp); intersect_closest / intersect_any call them when
+/// the BVH has one.
+Hit intersect_closest_wide8(const Bvh& bvh, const Ray& ray);
+bool intersect_any_wide8(const Bvh& bvh, const Ray& ray);
+
+}  // namespace lueur

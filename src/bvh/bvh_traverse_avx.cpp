@@ -1,0 +1,176 @@
+// The traversals of the 8-wide tree, compiled with AVX (this file only; see CMakeLists.txt) and called only when
+// the CPU has AVX (bvh_avx_enabled). Triangle groups are still tested four at a time by the shared SSE kernel.
+// Each lane of the 8-wide box test repeats the scalar arithmetic exactly, like the 4-wide one: the BVH stays
+// bit-identical to the brute-force loop.
+
+#include <immintrin.h>
+
+#include "bvh/bvh_kernels.h"
+
+namespace lueur {
+namespace {
+
+/// The ray's origin and inverse direction, broadcast to eight lanes.
+struct RayLanes8 {
+  __m256 ox, oy, oz, ix, iy, iz, tmin;
+  explicit RayLanes8(const RayData& r)
+      : ox(_mm256_set1_ps(r.origin.x)),
+        oy(_mm256_set1_ps(r.origin.y)),
+        oz(_mm256_set1_ps(r.origin.z)),
+        ix(_mm256_set1_ps(r.inv_dir.x)),
+        iy(_mm256_set1_ps(r.inv_dir.y)),
+        iz(_mm256_set1_ps(r.inv_dir.z)),
+        tmin(_mm256_set1_ps(r.tmin)) {}
+};
+
+/// hit_boxes on the eight children of a node (AVX min/max return their second operand on NaN, like SSE's).
+inline int hit_boxes8(const BvhWideNode8& node, const RayLanes8& r, __m256 t_limit, __m256& entry) {
+  const __m256 tx0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.lo[0]), r.ox), r.ix);
+  const __m256 tx1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.hi[0]), r.ox), r.ix);
+  const __m256 ty0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.lo[1]), r.oy), r.iy);
+  const __m256 ty1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.hi[1]), r.oy), r.iy);
+  const __m256 tz0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.lo[2]), r.oz), r.iz);
+  const __m256 tz1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.hi[2]), r.oz), r.iz);
+  const __m256 box_entry =
+      _mm256_max_ps(_mm256_max_ps(_mm256_min_ps(tx0, tx1), _mm256_min_ps(ty0, ty1)), _mm256_min_ps(tz0, tz1));
+  const __m256 box_exit = _mm256_mul_ps(
+      _mm256_min_ps(_mm256_min_ps(_mm256_max_ps(tx0, tx1), _mm256_max_ps(ty0, ty1)), _mm256_max_ps(tz0, tz1)),
+      _mm256_set1_ps(kExitScale));
+  entry = _mm256_max_ps(box_entry, r.tmin);
+  return _mm256_movemask_ps(
+      _mm256_and_ps(_mm256_cmp_ps(entry, box_exit, _CMP_LE_OQ), _mm256_cmp_ps(entry, t_limit, _CMP_LE_OQ)));
+}
+
+constexpr uint32_t kStackSize8 = (kBvhWidth8 - 1) * kBvhMaxDepth + 1;
+
+}  // namespace
+
+Hit intersect_closest_wide8(const Bvh& bvh, const Ray& ray) {
+  Hit hit;
+  if (bvh.empty()) return hit;
+  const RayData r(ray);
+  const RayLanes lanes(r);
+  const RayLanes8 lanes8(r);
+  const BvhWideNode8* nodes = bvh.wide8_nodes.data();
+  const BvhTriangleGroup* groups = bvh.groups.data();
+
+  float best_t = r.tmax;
+  uint32_t best_id = kNoHit;
+  float best_u = 0.0f, best_v = 0.0f;
+
+  StackEntry stack[kStackSize8];
+  uint32_t size = 0;
+  StackEntry current{0, 0, 0.0f};  // the root, an inner node
+
+  for (;;) {
+    if (current.count == 0) {
+      const BvhWideNode8& node = nodes[current.child];
+      __m256 entry_lanes;
+      int mask = hit_boxes8(node, lanes8, _mm256_set1_ps(best_t), entry_lanes);
+      if (mask != 0) {
+        alignas(32) float entry[8];
+        _mm256_store_ps(entry, entry_lanes);
+        // The children hit, nearest first (insertion sort of at most four), so that hits in the nearer ones
+        // shrink best_t and let the farther ones be dropped.
+        StackEntry hits[8];
+        uint32_t n = 0;
+        while (mask != 0) {
+          const auto k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
+          mask &= mask - 1;
+          StackEntry e{node.child[k], node.count[k], entry[k]};
+          uint32_t j = n++;
+          for (; j > 0 && hits[j - 1].entry > e.entry; --j) hits[j] = hits[j - 1];
+          hits[j] = e;
+        }
+        for (uint32_t j = n - 1; j > 0; --j) stack[size++] = hits[j];
+        current = hits[0];
+        continue;
+      }
+    } else {
+      for (uint32_t g = 0; g < current.count; ++g) {
+        const BvhTriangleGroup& group = groups[current.child + g];
+        __m128 t4, u4, v4;
+        int mask = moller_trumbore4(group, lanes, t4, u4, v4);
+        while (mask != 0) {
+          const auto k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
+          mask &= mask - 1;
+          float t = lane(t4, k);
+          if (!finish_lane(r, group, k, t)) continue;
+          // Equal distances go to the lowest input index, whichever leaf was reached first.
+          const uint32_t id = group.id[k];
+          if (t < best_t || (t == best_t && id < best_id)) {
+            best_t = t;
+            best_id = id;
+            best_u = lane(u4, k);
+            best_v = lane(v4, k);
+          }
+        }
+      }
+    }
+    // Next waiting node that can still hold a hit no farther than the best one.
+    do {
+      if (size == 0) {
+        if (best_id != kNoHit) {
+          hit.t = best_t;
+          hit.triangle = best_id;
+          hit.u = best_u;
+          hit.v = best_v;
+        }
+        return hit;
+      }
+      current = stack[--size];
+    } while (current.entry > best_t);
+  }
+}
+
+bool intersect_any_wide8(const Bvh& bvh, const Ray& ray) {
+  if (bvh.empty()) return false;
+  const RayData r(ray);
+  const RayLanes lanes(r);
+  const RayLanes8 lanes8(r);
+  const __m256 t_limit = _mm256_set1_ps(r.tmax);
+  const BvhWideNode8* nodes = bvh.wide8_nodes.data();
+  const BvhTriangleGroup* groups = bvh.groups.data();
+
+  // Any hit ends the query, so children are taken in slot order, with no sorting and no distances kept.
+  struct Ref {
+    uint32_t child, count;
+  };
+  Ref stack[kStackSize8];
+  uint32_t size = 0;
+  Ref current{0, 0};
+  for (;;) {
+    if (current.count == 0) {
+      const BvhWideNode8& node = nodes[current.child];
+      __m256 entry;
+      int mask = hit_boxes8(node, lanes8, t_limit, entry);
+      if (mask != 0) {
+        auto k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
+        mask &= mask - 1;
+        current = {node.child[k], node.count[k]};
+        while (mask != 0) {
+          k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
+          mask &= mask - 1;
+          stack[size++] = {node.child[k], node.count[k]};
+        }
+        continue;
+      }
+    } else {
+      for (uint32_t g = 0; g < current.count; ++g) {
+        const BvhTriangleGroup& group = groups[current.child + g];
+        __m128 t4, u4, v4;
+        int mask = moller_trumbore4(group, lanes, t4, u4, v4);
+        while (mask != 0) {
+          const auto k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
+          mask &= mask - 1;
+          float t = lane(t4, k);
+          if (finish_lane(r, group, k, t)) return true;
+        }
+      }
+    }
+    if (size == 0) return false;
+    current = stack[--size];
+  }
+}
+
+}  // namespace lueur
