@@ -144,9 +144,11 @@ int run(const BenchOptions& o) {
                               {"triangles", triangles},
                               {"ms", pair(build.lueur_ms, build.embree_ms)},
                               {"bytes_per_triangle", pair(build.lueur_bytes, build.embree_bytes)}});
-        std::fprintf(stderr, "lueur-bench: %s build: lueur %.1f ms %.1f B/tri, embree %.1f ms %.1f B/tri\n",
-                     b.name.c_str(), build.lueur_ms, build.lueur_bytes, build.embree_ms.value_or(0.0),
-                     build.embree_bytes.value_or(0.0));
+        std::fprintf(stderr, "lueur-bench: %s build: lueur %.1f ms %.1f B/tri", b.name.c_str(), build.lueur_ms,
+                     build.lueur_bytes);
+        if (build.embree_ms)
+          std::fprintf(stderr, ", embree %.1f ms %.1f B/tri", *build.embree_ms, build.embree_bytes.value_or(0.0));
+        std::fprintf(stderr, "\n");
       }
       if (!o.sections.count("throughput")) continue;
       Accelerator lueur;
