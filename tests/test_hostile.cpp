@@ -1,12 +1,8 @@
 // The hostile scene corpus (tests/hostile/MANIFEST): every case runs through the real headless path and must
 // end as its manifest says: refused with exit status 2 and one line naming the problem, leaving nothing in the
 // output folder; or rendered with the named warning (or none) into a finite image. Never a crash or a hang.
-#include "render/image_output.h"
-#include "test_support.h"
-
-#include <gtest/gtest.h>
-
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -15,6 +11,9 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+
+#include "render/image_output.h"
+#include "test_support.h"
 
 namespace lueur {
 namespace {
@@ -105,6 +104,7 @@ struct Generated {
   std::string path;
   std::string prefix;
   std::string skip;
+  std::string executable = LUEUR_EXECUTABLE;
 };
 
 /// Root reads files whatever their permissions: as root, permission cases run lueur as the user nobody.
@@ -116,6 +116,10 @@ std::string drop_root(const std::string& dir, std::string& skip) {
   }
   fs::permissions(dir, fs::perms::all);  // nobody writes the output there
   fs::permissions(dir + "/out", fs::perms::all);
+  // The build tree may sit in a directory nobody cannot enter (a 0700 mktemp clone): run a copy from `dir`.
+  const std::string copy = dir + "/lueur";
+  fs::copy_file(LUEUR_EXECUTABLE, copy, fs::copy_options::overwrite_existing);
+  fs::permissions(copy, fs::perms::all);
   return "/usr/bin/setpriv --reuid=65534 --regid=65534 --clear-groups";
 }
 
@@ -138,6 +142,8 @@ Generated generate(const std::string& name, const std::string& dir) {
       write_file(mtl, "newmtl red\nKd 1 0 0\n");
       ::chmod(mtl.c_str(), 0);
       g.prefix = drop_root(dir, g.skip);
+      if (!g.prefix.empty()) g.executable = dir + "/lueur";
+      if (!g.prefix.empty()) g.executable = dir + "/lueur";
     }
   } else if (name == "megabyte-lines") {
     // A comment and a valid face, each a megabyte long (indices with many leading zeros).
@@ -158,6 +164,7 @@ Generated generate(const std::string& name, const std::string& dir) {
     write_file(g.path, std::string(kTriangle) + "f 1 2 3\n");
     ::chmod(g.path.c_str(), 0);
     g.prefix = drop_root(dir, g.skip);
+    if (!g.prefix.empty()) g.executable = dir + "/lueur";
   } else if (name == "scene-too-large-for-memory") {
     // 90000 vertices and 178802 triangles need about 50 MiB; 80 MiB less 64 MiB for the image leaves 16.
     std::string obj;
@@ -202,20 +209,22 @@ TEST_P(Hostile, EndsAsTheManifestSays) {
   fs::create_directory(out_dir);
   const std::string out = out_dir + "/image.pfm";
 
-  std::string scene = kHostile + "/" + c.scene, prefix;
+  std::string scene = kHostile + "/" + c.scene, prefix, executable = LUEUR_EXECUTABLE;
   if (c.scene[0] == '@') {
     const Generated g = generate(c.scene.substr(1), dir);
     if (!g.skip.empty()) GTEST_SKIP() << g.skip;
     scene = g.path;
     prefix = g.prefix;
+    executable = g.executable;
   } else {
     ASSERT_TRUE(test::file_exists(scene)) << "MANIFEST:" << c.line << ": no file " << scene;
   }
 
   const test::CommandResult r =
-      test::run_lueur(test::shell_quote(scene) + " --headless --size 16x16 --frames 1 --passes le,l1,l2,ao --out " +
-                          test::shell_quote(out),
-                      prefix);
+      test::run_program(executable,
+                        test::shell_quote(scene) + " --headless --size 16x16 --frames 1 --passes le,l1,l2,ao --out " +
+                            test::shell_quote(out),
+                        prefix);
   ASSERT_NE(r.exit_code, 124) << "hung (killed by timeout): " << r.output;
   ASSERT_LT(r.exit_code, 128) << "crashed: " << r.output;
   const std::vector<std::string> lines = lines_of(r.output);
