@@ -9,7 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace lueur {
 namespace {
@@ -107,6 +109,28 @@ TEST(DefaultScene, AgreesWithItsObjCopyInAssets) {
     ASSERT_EQ(a.ns, b.ns);
     ASSERT_EQ(a.ke, b.ke);
   }
+}
+
+TEST(Render, NonFiniteSamplesAreDroppedAndCounted) {
+  // An emitter of infinite radiance (which the loader never lets through) seen straight on: every pixel's Le
+  // sample is infinite, and the film must stay finite anyway.
+  const float inf = std::numeric_limits<float>::infinity();
+  const auto traced = prepare_scene(test::make_rect_light_over_floor(4.0f, 4.0f, 1.0f, Vec3(0.5f), Vec3(inf)));
+  RenderSettings settings;
+  settings.width = settings.height = 8;
+  settings.enabled = {true, true, true, true};
+  settings.l1_rays = settings.l2_rays = settings.ao_rays = 1;
+  Film film;
+  film.reset(settings);
+  ThreadPool pool(2);
+  // From the floor looking up at the light's emitting side.
+  const Camera camera = make_camera({Vec3(0.0f, 0.2f, 0.0f), Vec3(0.0f, 1.0f, 0.01f), Vec3(0, 0, 1), 60.0f}, 8, 8);
+  uint64_t dropped = 0;
+  for (int f = 0; f < 2; ++f) dropped += render_frame(*traced, camera, settings, film, pool).dropped_samples;
+  EXPECT_GE(dropped, 2u * 64u) << "every pixel sees the light";
+  for (const auto& sums : film.sums)
+    for (const float v : sums) ASSERT_TRUE(std::isfinite(v));
+  EXPECT_EQ(film.frames, 2u);
 }
 
 Image make_test_image(int w, int h) {

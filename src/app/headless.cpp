@@ -119,7 +119,7 @@ int run_headless(const AppOptions& options) {
 
   const Clock::time_point start = Clock::now();
   Clock::time_point last_progress = start;
-  uint64_t rays = 0, bounce_hits = 0, reused = 0;
+  uint64_t rays = 0, bounce_hits = 0, reused = 0, dropped = 0;
   double l2_seconds = 0.0;
   const bool tty = ::isatty(STDERR_FILENO);
   for (int f = 0; f < options.frames; ++f) {
@@ -127,6 +127,7 @@ int run_headless(const AppOptions& options) {
     rays += frame.rays;
     bounce_hits += frame.l2_bounce_hits;
     reused += frame.l2_reused;
+    dropped += frame.dropped_samples;
     l2_seconds += frame.l2_seconds;
     const double elapsed = seconds_since(start);
     if (f + 1 == options.frames || std::chrono::duration<double>(Clock::now() - last_progress).count() > 0.5) {
@@ -144,6 +145,11 @@ int run_headless(const AppOptions& options) {
   for (int l = 0; l < kLayerCount; ++l)
     if (film.has(static_cast<Layer>(l)))
       layers.push_back({std::string(kLayerNames[static_cast<size_t>(l)]), layer_average(film, static_cast<Layer>(l))});
+  if (dropped > 0)
+    std::fprintf(stderr,
+                 "lueur: warning: %llu pixel samples were not finite or would overflow the image and were dropped "
+                 "(a scene of extreme scale or emission)\n",
+                 static_cast<unsigned long long>(dropped));
   if (options.gl != HeadlessGl::kNone) {
     write_gl_screenshot(options, film, traced, {elapsed, rays, l2_seconds, bounce_hits, reused});
   } else {

@@ -8,6 +8,7 @@
 #include "render/indirect_light.h"
 
 #include <chrono>
+#include <cmath>
 
 namespace lueur {
 namespace {
@@ -158,9 +159,16 @@ FrameResult render_frame(const TracedScene& traced, const Camera& camera, const 
     if (values.empty()) continue;
     float* sum = film.sums[l].data();
     for (size_t i = 0; i < values.size(); ++i) {
-      sum[3 * i] += values[i].r;
-      sum[3 * i + 1] += values[i].g;
-      sum[3 * i + 2] += values[i].b;
+      const float r = sum[3 * i] + values[i].r, g = sum[3 * i + 1] + values[i].g, b = sum[3 * i + 2] + values[i].b;
+      // One extreme sample (a near-singular light path in a scene of extreme scale) must not make a pixel NaN or
+      // infinite for good: it is dropped and counted instead.
+      if (!std::isfinite(r) || !std::isfinite(g) || !std::isfinite(b)) {
+        ++result.dropped_samples;
+        continue;
+      }
+      sum[3 * i] = r;
+      sum[3 * i + 1] = g;
+      sum[3 * i + 2] = b;
     }
   }
   ++film.frames;

@@ -21,6 +21,7 @@ struct FrameResult {
   uint64_t l2_reused = 0;       ///< of those, how many reused L1 from the screen
   double l2_seconds = 0.0;      ///< wall time of the L2 phase
   bool completed = true;  ///< false when `cancel` stopped it early (the film is then left untouched)
+  uint64_t dropped_samples = 0;  ///< pixel values not added to the film: not finite, or the sum would overflow
 };
 
 /// Traces frame number `film.frames` at full resolution and adds it to the film's sums.
