@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# Runs the test suite under the sanitizers, each build in its own directory (clang, -fno-sanitize-recover=all):
+#   build-asan/  every test under AddressSanitizer + UndefinedBehaviorSanitizer (leaks included)
+#   build-tsan/  the threading tests (thread pool, renderer across thread counts) under ThreadSanitizer
+#   scripts/sanitize.sh [asan|tsan]   # both by default
+# Tests also start the `lueur` executable, built with the same sanitizers: every process writes its reports to
+# <build>/sanitizer-logs/, and any file there fails the run, whatever the exit statuses said.
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+lueur_install_packages
+
+# Threading tests: the thread pool, and everything that renders with more than one thread.
+TSAN_TARGETS=(test_thread_pool test_render test_indirect)
+TSAN_TESTS='ThreadPool|CancelledFrame|Render\.BitIdentical|ReuseFraction'
+
+sanitized_build() {  # build_dir sanitizers [cmake --build arguments...]
+  local dir="$1" sanitizers="$2"
+  shift 2
+  if [ ! -f "$dir/build.ninja" ]; then
+    CC=clang CXX=clang++ cmake -S "$LUEUR_ROOT" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+      -DLUEUR_SANITIZE="$sanitizers" >&2
+  fi
+  cmake --build "$dir" --parallel "$(nproc)" "$@" >&2
+}
+
+run_checked() {  # build_dir ctest arguments...
+  local dir="$1"
+  shift
+  local logs="$dir/sanitizer-logs"
+  rm -rf "$logs"
+  mkdir -p "$logs"
+  chmod 1777 "$logs"  # some tests run lueur as the user nobody
+  local status=0
+  (
+    cd "$dir"
+    ASAN_OPTIONS="log_path=$logs/asan:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1" \
+      UBSAN_OPTIONS="log_path=$logs/ubsan:print_stacktrace=1:halt_on_error=1" \
+      TSAN_OPTIONS="log_path=$logs/tsan:halt_on_error=1:second_deadlock_stack=1" \
+      ctest --output-on-failure -j "$(nproc)" --timeout 1200 "$@"
+  ) || status=$?
+  if [ -n "$(ls -A "$logs")" ]; then
+    echo "lueur: sanitizer reports in $logs:" >&2
+    for f in "$logs"/*; do
+      echo "==== $f" >&2
+      head -c 20000 "$f" >&2
+    done
+    status=1
+  fi
+  return "$status"
+}
+
+what="${1:-all}"
+if [ "$what" = all ] || [ "$what" = asan ]; then
+  echo "lueur: every test under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/)" >&2
+  sanitized_build "$LUEUR_ROOT/build-asan" address,undefined
+  run_checked "$LUEUR_ROOT/build-asan"
+fi
+if [ "$what" = all ] || [ "$what" = tsan ]; then
+  echo "lueur: the threading tests under ThreadSanitizer (build-tsan/)" >&2
+  sanitized_build "$LUEUR_ROOT/build-tsan" thread --target "${TSAN_TARGETS[@]}"
+  run_checked "$LUEUR_ROOT/build-tsan" -R "$TSAN_TESTS"
+fi
+echo "lueur: no sanitizer reports" >&2

@@ -1,0 +1,119 @@
+// The thread pool and the renderer's use of it under stress: every index runs exactly once, worker ids are valid
+// and never used by two threads at once, pools start and stop in any rhythm, and a frame cancelled from another
+// thread leaves the film untouched. Run under ThreadSanitizer by scripts/sanitize.sh.
+#include "render/renderer.h"
+#include "render/thread_pool.h"
+#include "scene/default_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <thread>
+#include <vector>
+
+namespace lueur {
+namespace {
+
+TEST(ThreadPool, EveryIndexRunsExactlyOnceOnAValidWorker) {
+  for (const int threads : {1, 2, 3, 8}) {
+    ThreadPool pool(threads);
+    ASSERT_EQ(pool.thread_count(), threads);
+    std::vector<std::atomic<int>> in_use(static_cast<size_t>(threads));
+    for (int round = 0; round < 200; ++round) {
+      const int count = (round * 37) % 300;  // includes 0, fewer than threads and many more
+      std::vector<std::atomic<int>> visits(static_cast<size_t>(count));
+      std::atomic<bool> worker_shared{false}, worker_out_of_range{false};
+      pool.parallel_for(count, [&](int index, int worker) {
+        if (worker < 0 || worker >= threads) {
+          worker_out_of_range = true;
+          return;
+        }
+        // A worker id stands for per-thread scratch: two threads must never hold the same one at once.
+        if (in_use[static_cast<size_t>(worker)].fetch_add(1) != 0) worker_shared = true;
+        visits[static_cast<size_t>(index)].fetch_add(1);
+        in_use[static_cast<size_t>(worker)].fetch_sub(1);
+      });
+      ASSERT_FALSE(worker_out_of_range) << threads << " threads, round " << round;
+      ASSERT_FALSE(worker_shared) << threads << " threads, round " << round;
+      for (int i = 0; i < count; ++i)
+        ASSERT_EQ(visits[static_cast<size_t>(i)].load(), 1) << "index " << i << ", " << threads << " threads";
+    }
+  }
+}
+
+TEST(ThreadPool, ResultsWrittenByWorkersAreVisibleAfterTheLoop) {
+  ThreadPool pool(4);
+  std::vector<uint64_t> values(10000);  // plain memory: parallel_for must publish it to the caller
+  for (int round = 0; round < 50; ++round) {
+    pool.parallel_for(static_cast<int>(values.size()),
+                      [&](int i, int) { values[static_cast<size_t>(i)] = static_cast<uint64_t>(i) * round; });
+    uint64_t sum = 0;
+    for (const uint64_t v : values) sum += v;
+    ASSERT_EQ(sum, static_cast<uint64_t>(round) * 9999 * 10000 / 2);
+  }
+}
+
+TEST(ThreadPool, StartsAndStopsInAnyRhythm) {
+  for (int i = 0; i < 100; ++i) {
+    ThreadPool idle(3);  // destroyed without ever running a loop
+  }
+  for (int i = 0; i < 100; ++i) {
+    ThreadPool pool(3);
+    std::atomic<int> ran{0};
+    pool.parallel_for(i % 7, [&](int, int) { ran.fetch_add(1); });
+    EXPECT_EQ(ran.load(), i % 7);
+  }  // destroyed right after a loop, while workers may still be on their way back to sleep
+}
+
+TEST(ThreadPool, SeveralPoolsFromSeveralThreads) {
+  std::vector<std::thread> owners;
+  std::atomic<int> total{0};
+  for (int t = 0; t < 3; ++t)
+    owners.emplace_back([&] {
+      ThreadPool pool(2);
+      for (int round = 0; round < 100; ++round) pool.parallel_for(10, [&](int, int) { total.fetch_add(1); });
+    });
+  for (std::thread& owner : owners) owner.join();
+  EXPECT_EQ(total.load(), 3 * 100 * 10);
+}
+
+TEST(CancelledFrame, LeavesTheFilmUntouchedWhenCancelledFromAnotherThread) {
+  Scene scene = make_default_scene();
+  const std::shared_ptr<const TracedScene> traced = prepare_scene(std::move(scene));
+  const DefaultView view;
+  RenderSettings settings;
+  settings.width = settings.height = 96;
+  settings.enabled = {true, true, true, true};
+  settings.l1_rays = settings.l2_rays = 4;
+  const Camera camera = make_camera({view.eye, view.target, view.up, view.fovy_degrees}, 96, 96);
+  ThreadPool pool(3);
+  Film film;
+  film.reset(settings);
+  ASSERT_TRUE(render_frame(*traced, camera, settings, film, pool).completed);
+  const Film after_one = film;
+
+  int cancelled = 0;
+  for (int attempt = 0; attempt < 20; ++attempt) {
+    std::atomic<bool> cancel{false};
+    std::thread canceller([&] {
+      std::this_thread::sleep_for(std::chrono::microseconds(200 * attempt));
+      cancel.store(true);
+    });
+    const FrameResult r = render_frame(*traced, camera, settings, film, pool, &cancel);
+    canceller.join();
+    if (r.completed) {
+      // Finished before the cancel arrived: one more frame, as if uncancelled; start over from one frame.
+      EXPECT_EQ(film.frames, 2u);
+      film = after_one;
+      continue;
+    }
+    ++cancelled;
+    ASSERT_EQ(film.frames, 1u);
+    for (size_t l = 0; l < film.sums.size(); ++l) ASSERT_EQ(film.sums[l], after_one.sums[l]) << "layer " << l;
+  }
+  EXPECT_GT(cancelled, 0) << "no attempt was cancelled mid-frame";
+}
+
+}  // namespace
+}  // namespace lueur
