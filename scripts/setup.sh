@@ -12,6 +12,7 @@ LUEUR_PACKAGES=(
   libgtest-dev libembree-dev
   libglfw3-dev libimgui-dev libgl-dev libegl-dev libosmesa6-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0
   xvfb xauth xdotool
+  clang libclang-rt-14-dev  # sanitizer and fuzzing builds: scripts/sanitize.sh, scripts/fuzz.sh
 )
 
 lueur_install_packages() {
