@@ -14,7 +14,7 @@ lueur_install_packages
 FUZZ_SECONDS="${FUZZ_SECONDS:-60}"
 build="$LUEUR_ROOT/build-fuzz"
 if [ ! -f "$build/build.ninja" ]; then
-  CC=clang CXX=clang++ cmake -S "$LUEUR_ROOT" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  CC=clang CXX=clang++ cmake -S "$LUEUR_ROOT" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
     -DLUEUR_BUILD_TESTS=OFF -DLUEUR_FUZZ=ON -DLUEUR_SANITIZE=address,undefined >&2
 fi
 cmake --build "$build" --parallel "$(nproc)" --target fuzz_scene_to_frame >&2
