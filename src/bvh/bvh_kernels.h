@@ -217,6 +217,105 @@ struct StackEntry {
 // Each wide node visited pushes at most kBvhWidth - 1 entries, and no path is deeper than kBvhMaxDepth.
 constexpr uint32_t kStackSize = (kBvhWidth - 1) * kBvhMaxDepth + 1;
 
+// ---- the pieces both wide traversals (4-wide SSE, 8-wide AVX) share -------------------------------------------
+
+/// The closest hit a traversal has found so far.
+struct BestHit {
+  float t;
+  uint32_t id = kNoHit;
+  float u = 0.0f, v = 0.0f;
+};
+
+/// Tests the `count` triangle groups of a leaf starting at `first`, keeping the closest hit in `best`. Equal
+/// distances go to the lowest input index, whichever leaf was reached first.
+inline void intersect_leaf_closest(const BvhTriangleGroup* groups, uint32_t first, uint32_t count, const RayData& r,
+                                   const RayLanes& lanes, BestHit& best) {
+  for (uint32_t g = 0; g < count; ++g) {
+    const BvhTriangleGroup& group = groups[first + g];
+    __m128 t4, u4, v4;
+    int mask = moller_trumbore4(group, lanes, t4, u4, v4);
+    while (mask != 0) {
+      const auto k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
+      mask &= mask - 1;
+      float t = lane(t4, k);
+      if (!finish_lane(r, group, k, t)) continue;
+      const uint32_t id = group.id[k];
+      if (t < best.t || (t == best.t && id < best.id)) {
+        best.t = t;
+        best.id = id;
+        best.u = lane(u4, k);
+        best.v = lane(v4, k);
+      }
+    }
+  }
+}
+
+/// Whether any triangle of the leaf's `count` groups starting at `first` is hit inside the ray's interval.
+inline bool intersect_leaf_any(const BvhTriangleGroup* groups, uint32_t first, uint32_t count, const RayData& r,
+                               const RayLanes& lanes) {
+  for (uint32_t g = 0; g < count; ++g) {
+    const BvhTriangleGroup& group = groups[first + g];
+    __m128 t4, u4, v4;
+    int mask = moller_trumbore4(group, lanes, t4, u4, v4);
+    while (mask != 0) {
+      const auto k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
+      mask &= mask - 1;
+      float t = lane(t4, k);
+      if (finish_lane(r, group, k, t)) return true;
+    }
+  }
+  return false;
+}
+
+/// The children of `node` whose bits are set in `mask`, nearest first (insertion sort of at most Width): all but
+/// the nearest go on the stack, farthest deepest, so that hits in the nearer ones shrink the best distance and let
+/// the farther ones be dropped. Returns the nearest, to visit next. `mask` must not be 0.
+template <size_t Width, typename Node>
+inline StackEntry push_children_nearest_first(const Node& node, int mask, const float* entry, StackEntry* stack,
+                                              uint32_t& size) {
+  StackEntry hits[Width];
+  uint32_t n = 0;
+  while (mask != 0) {
+    const auto k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
+    mask &= mask - 1;
+    const StackEntry e{node.child[k], node.count[k], entry[k]};
+    uint32_t j = n++;
+    for (; j > 0 && hits[j - 1].entry > e.entry; --j) hits[j] = hits[j - 1];
+    hits[j] = e;
+  }
+  for (uint32_t j = n - 1; j > 0; --j) stack[size++] = hits[j];
+  return hits[0];
+}
+
+/// The slots of the children set in `mask`, in slot order: the first is returned, the others pushed. For any-hit
+/// queries, where no distance order pays. `mask` must not be 0.
+struct NodeRef {
+  uint32_t child, count;
+};
+template <typename Node>
+inline NodeRef push_children_in_order(const Node& node, int mask, NodeRef* stack, uint32_t& size) {
+  auto k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
+  mask &= mask - 1;
+  const NodeRef first{node.child[k], node.count[k]};
+  while (mask != 0) {
+    k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
+    mask &= mask - 1;
+    stack[size++] = {node.child[k], node.count[k]};
+  }
+  return first;
+}
+
+inline Hit make_hit(const BestHit& best) {
+  Hit hit;
+  if (best.id != kNoHit) {
+    hit.t = best.t;
+    hit.triangle = best.id;
+    hit.u = best.u;
+    hit.v = best.v;
+  }
+  return hit;
+}
+
 }  // namespace
 
 /// The traversals of the 8-wide tree (bvh_traverse_avx.cpp); intersect_closest / intersect_any call them when

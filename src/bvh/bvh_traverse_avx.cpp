@@ -46,18 +46,14 @@ constexpr uint32_t kStackSize8 = (kBvhWidth8 - 1) * kBvhMaxDepth + 1;
 }  // namespace
 
 Hit intersect_closest_wide8(const Bvh& bvh, const Ray& ray) {
-  Hit hit;
-  if (bvh.empty()) return hit;
+  if (bvh.empty()) return Hit{};
   const RayData r(ray);
   const RayLanes lanes(r);
   const RayLanes8 lanes8(r);
   const BvhWideNode8* nodes = bvh.wide8_nodes.data();
   const BvhTriangleGroup* groups = bvh.groups.data();
 
-  float best_t = r.tmax;
-  uint32_t best_id = kNoHit;
-  float best_u = 0.0f, best_v = 0.0f;
-
+  BestHit best{r.tmax};
   StackEntry stack[kStackSize8];
   uint32_t size = 0;
   StackEntry current{0, 0, 0.0f};  // the root, an inner node
@@ -66,60 +62,21 @@ Hit intersect_closest_wide8(const Bvh& bvh, const Ray& ray) {
     if (current.count == 0) {
       const BvhWideNode8& node = nodes[current.child];
       __m256 entry_lanes;
-      int mask = hit_boxes8(node, lanes8, _mm256_set1_ps(best_t), entry_lanes);
+      const int mask = hit_boxes8(node, lanes8, _mm256_set1_ps(best.t), entry_lanes);
       if (mask != 0) {
-        alignas(32) float entry[8];
+        alignas(32) float entry[kBvhWidth8];
         _mm256_store_ps(entry, entry_lanes);
-        // The children hit, nearest first (insertion sort of at most four), so that hits in the nearer ones
-        // shrink best_t and let the farther ones be dropped.
-        StackEntry hits[8];
-        uint32_t n = 0;
-        while (mask != 0) {
-          const auto k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
-          mask &= mask - 1;
-          StackEntry e{node.child[k], node.count[k], entry[k]};
-          uint32_t j = n++;
-          for (; j > 0 && hits[j - 1].entry > e.entry; --j) hits[j] = hits[j - 1];
-          hits[j] = e;
-        }
-        for (uint32_t j = n - 1; j > 0; --j) stack[size++] = hits[j];
-        current = hits[0];
+        current = push_children_nearest_first<kBvhWidth8>(node, mask, entry, stack, size);
         continue;
       }
     } else {
-      for (uint32_t g = 0; g < current.count; ++g) {
-        const BvhTriangleGroup& group = groups[current.child + g];
-        __m128 t4, u4, v4;
-        int mask = moller_trumbore4(group, lanes, t4, u4, v4);
-        while (mask != 0) {
-          const auto k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
-          mask &= mask - 1;
-          float t = lane(t4, k);
-          if (!finish_lane(r, group, k, t)) continue;
-          // Equal distances go to the lowest input index, whichever leaf was reached first.
-          const uint32_t id = group.id[k];
-          if (t < best_t || (t == best_t && id < best_id)) {
-            best_t = t;
-            best_id = id;
-            best_u = lane(u4, k);
-            best_v = lane(v4, k);
-          }
-        }
-      }
+      intersect_leaf_closest(groups, current.child, current.count, r, lanes, best);
     }
     // Next waiting node that can still hold a hit no farther than the best one.
     do {
-      if (size == 0) {
-        if (best_id != kNoHit) {
-          hit.t = best_t;
-          hit.triangle = best_id;
-          hit.u = best_u;
-          hit.v = best_v;
-        }
-        return hit;
-      }
+      if (size == 0) return make_hit(best);
       current = stack[--size];
-    } while (current.entry > best_t);
+    } while (current.entry > best.t);
   }
 }
 
@@ -133,40 +90,20 @@ bool intersect_any_wide8(const Bvh& bvh, const Ray& ray) {
   const BvhTriangleGroup* groups = bvh.groups.data();
 
   // Any hit ends the query, so children are taken in slot order, with no sorting and no distances kept.
-  struct Ref {
-    uint32_t child, count;
-  };
-  Ref stack[kStackSize8];
+  NodeRef stack[kStackSize8];
   uint32_t size = 0;
-  Ref current{0, 0};
+  NodeRef current{0, 0};
   for (;;) {
     if (current.count == 0) {
       const BvhWideNode8& node = nodes[current.child];
       __m256 entry;
-      int mask = hit_boxes8(node, lanes8, t_limit, entry);
+      const int mask = hit_boxes8(node, lanes8, t_limit, entry);
       if (mask != 0) {
-        auto k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
-        mask &= mask - 1;
-        current = {node.child[k], node.count[k]};
-        while (mask != 0) {
-          k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
-          mask &= mask - 1;
-          stack[size++] = {node.child[k], node.count[k]};
-        }
+        current = push_children_in_order(node, mask, stack, size);
         continue;
       }
-    } else {
-      for (uint32_t g = 0; g < current.count; ++g) {
-        const BvhTriangleGroup& group = groups[current.child + g];
-        __m128 t4, u4, v4;
-        int mask = moller_trumbore4(group, lanes, t4, u4, v4);
-        while (mask != 0) {
-          const auto k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
-          mask &= mask - 1;
-          float t = lane(t4, k);
-          if (finish_lane(r, group, k, t)) return true;
-        }
-      }
+    } else if (intersect_leaf_any(groups, current.child, current.count, r, lanes)) {
+      return true;
     }
     if (size == 0) return false;
     current = stack[--size];
