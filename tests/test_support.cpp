@@ -1,13 +1,14 @@
 #include "test_support.h"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace lueur::test {
 
@@ -68,23 +69,6 @@ std::string shared_scene(const std::string& relative) {
   const std::filesystem::path path = std::filesystem::path(LUEUR_SHARED_SCENES) / relative;
   return std::filesystem::exists(path) ? path.string() : std::string();
 }
-
-}  // namespace lueur::test
-
-namespace lueur::test {
-namespace {
-
-void add_quad(Scene& s, Vec3 a, Vec3 b, Vec3 c, Vec3 d, uint32_t material) {
-  const auto base = static_cast<uint32_t>(s.positions.size());
-  s.positions.insert(s.positions.end(), {a, b, c, d});
-  Triangle t1, t2;
-  t1.v[0] = base, t1.v[1] = base + 1, t1.v[2] = base + 2, t1.material = material;
-  t2.v[0] = base, t2.v[1] = base + 2, t2.v[2] = base + 3, t2.material = material;
-  s.triangles.push_back(t1);
-  s.triangles.push_back(t2);
-}
-
-}  // namespace
 
 Scene make_closed_emitting_box(float h, Vec3 rho, Vec3 le) {
   Scene s;

@@ -41,16 +41,6 @@ void add_sphere(Scene& scene, const Vec3& centre, float radius, uint32_t materia
     }
 }
 
-void add_quad(Scene& scene, Vec3 a, Vec3 b, Vec3 c, Vec3 d, uint32_t material) {
-  const auto base = static_cast<uint32_t>(scene.positions.size());
-  scene.positions.insert(scene.positions.end(), {a, b, c, d});
-  Triangle t1, t2;
-  t1.v[0] = base, t1.v[1] = base + 1, t1.v[2] = base + 2, t1.material = material;
-  t2.v[0] = base, t2.v[1] = base + 2, t2.v[2] = base + 3, t2.material = material;
-  scene.triangles.push_back(t1);
-  scene.triangles.push_back(t2);
-}
-
 /// A quad light inside the box, below its top, facing down: for closed rooms, whose default light sits above
 /// the roof where every shadow ray would stop at the ceiling.
 uint32_t add_interior_light(Scene& scene) {

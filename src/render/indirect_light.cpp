@@ -36,12 +36,14 @@ namespace {
 
 /// A direction on the cosine-weighted hemisphere around the shading normal, or false when it dips below the
 /// geometric surface (such rays would leak through it and count as zero).
-bool sample_bounce(const SurfacePoint& sp, Pcg32& rng, Vec3& wi, float& cos_theta) {
+bool sample_bounce_ray(const SurfacePoint& sp, Pcg32& rng, Ray& ray) {
   const float u1 = rng.next_float(), u2 = rng.next_float();
   const Vec3 local = sample_cosine_hemisphere(u1, u2);
-  wi = Frame::from_normal(sp.shading_normal).to_world(local);
-  cos_theta = local.z;
-  return cos_theta > 0.0f && glm::dot(wi, sp.geometric_normal) > 0.0f;
+  const Vec3 wi = Frame::from_normal(sp.shading_normal).to_world(local);
+  if (!(local.z > 0.0f && glm::dot(wi, sp.geometric_normal) > 0.0f)) return false;
+  ray.origin = offset_origin(sp.position, sp.geometric_normal, wi);
+  ray.dir = wi;
+  return true;
 }
 
 }  // namespace
@@ -70,12 +72,9 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
   recompute.blinn_k = settings.blinn_k;
 
   for (int s = 0; s < settings.l2_rays; ++s) {
-    Vec3 wi;
-    float cos_theta = 0.0f;
-    if (!sample_bounce(sp, bounce_rng, wi, cos_theta)) continue;
     Ray bounce;
-    bounce.origin = offset_origin(sp.position, sp.geometric_normal, wi);
-    bounce.dir = wi;
+    if (!sample_bounce_ray(sp, bounce_rng, bounce)) continue;
+    const Vec3& wi = bounce.dir;
     ++rays_traced;
     const Hit hit = intersect_closest(traced.accel, bounce);
     if (!hit.found()) continue;
@@ -125,12 +124,8 @@ Vec3 estimate_ambient_occlusion(const TracedScene& traced, const SurfacePoint& s
   if (rays <= 0) return Vec3(0.0f);
   int open = 0;
   for (int s = 0; s < rays; ++s) {
-    Vec3 wi;
-    float cos_theta = 0.0f;
-    if (!sample_bounce(sp, rng, wi, cos_theta)) continue;
     Ray ray;
-    ray.origin = offset_origin(sp.position, sp.geometric_normal, wi);
-    ray.dir = wi;
+    if (!sample_bounce_ray(sp, rng, ray)) continue;
     ray.tmax = radius;
     ++rays_traced;
     if (!intersect_any(traced.accel, ray)) ++open;

@@ -29,9 +29,7 @@ struct SceneBuilder {
   }
   /// A planar quad given counter-clockwise as seen from the side it faces, as two triangles (0 1 2, 0 2 3).
   void add_quad(const std::array<Vec3, 4>& q, uint32_t material) {
-    const uint32_t i0 = add_vertex(q[0]), i1 = add_vertex(q[1]), i2 = add_vertex(q[2]), i3 = add_vertex(q[3]);
-    add_triangle(i0, i1, i2, material);
-    add_triangle(i0, i2, i3, material);
+    lueur::add_quad(scene, q[0], q[1], q[2], q[3], material);
   }
   /// A block: the top quad (counter-clockwise seen from above) extruded down to the floor; the bottom is hidden.
   void add_block(const std::array<Vec3, 4>& top, uint32_t material) {
@@ -56,8 +54,8 @@ Material make_material(const char* name, Vec3 kd, Vec3 ks = Vec3(0.0f), float ns
 
 /// Apple profile: radius and height at polar angle theta (0 at the stem), with dimples at both poles.
 Vec2 apple_profile(float theta, float radius) {
-  const float dimple = 1.0f - 0.28f * std::exp(-theta * theta / 0.25f) -
-                       0.12f * std::exp(-(kPi - theta) * (kPi - theta) / 0.3f);
+  const float dimple =
+      1.0f - 0.28f * std::exp(-theta * theta / 0.25f) - 0.12f * std::exp(-(kPi - theta) * (kPi - theta) / 0.3f);
   const float r = radius * dimple;
   return Vec2(r * std::sin(theta), 0.88f * r * std::cos(theta));
 }
@@ -142,24 +140,23 @@ Scene make_default_scene() {
       b.add_material(make_material("ceiling-light", Vec3(0.78f), Vec3(0.0f), 0.0f, Vec3(34.0f, 24.0f, 8.0f)));
   const uint32_t wall_lamp =
       b.add_material(make_material("wall-lamp", Vec3(0.78f), Vec3(0.0f), 0.0f, Vec3(10.0f, 18.0f, 40.0f)));
-  const uint32_t skin =
-      b.add_material(make_material("apple-skin", Vec3(0.62f, 0.05f, 0.04f), Vec3(0.25f), 48.0f));
+  const uint32_t skin = b.add_material(make_material("apple-skin", Vec3(0.62f, 0.05f, 0.04f), Vec3(0.25f), 48.0f));
   const uint32_t stem = b.add_material(make_material("apple-stem", Vec3(0.25f, 0.15f, 0.06f)));
 
   // Cornell box, published measurements (mm).
   b.add_quad({Vec3(552.8f, 0.0f, 0.0f), Vec3(0.0f, 0.0f, 0.0f), Vec3(0.0f, 0.0f, 559.2f), Vec3(549.6f, 0.0f, 559.2f)},
              white);  // floor
-  b.add_quad({Vec3(556.0f, 548.8f, 0.0f), Vec3(556.0f, 548.8f, 559.2f), Vec3(0.0f, 548.8f, 559.2f),
-              Vec3(0.0f, 548.8f, 0.0f)},
-             white);  // ceiling
-  b.add_quad({Vec3(549.6f, 0.0f, 559.2f), Vec3(0.0f, 0.0f, 559.2f), Vec3(0.0f, 548.8f, 559.2f),
-              Vec3(556.0f, 548.8f, 559.2f)},
-             white);  // back wall
+  b.add_quad(
+      {Vec3(556.0f, 548.8f, 0.0f), Vec3(556.0f, 548.8f, 559.2f), Vec3(0.0f, 548.8f, 559.2f), Vec3(0.0f, 548.8f, 0.0f)},
+      white);  // ceiling
+  b.add_quad(
+      {Vec3(549.6f, 0.0f, 559.2f), Vec3(0.0f, 0.0f, 559.2f), Vec3(0.0f, 548.8f, 559.2f), Vec3(556.0f, 548.8f, 559.2f)},
+      white);  // back wall
   b.add_quad({Vec3(0.0f, 0.0f, 559.2f), Vec3(0.0f, 0.0f, 0.0f), Vec3(0.0f, 548.8f, 0.0f), Vec3(0.0f, 548.8f, 559.2f)},
              green);  // right wall
-  b.add_quad({Vec3(552.8f, 0.0f, 0.0f), Vec3(549.6f, 0.0f, 559.2f), Vec3(556.0f, 548.8f, 559.2f),
-              Vec3(556.0f, 548.8f, 0.0f)},
-             red);  // left wall
+  b.add_quad(
+      {Vec3(552.8f, 0.0f, 0.0f), Vec3(549.6f, 0.0f, 559.2f), Vec3(556.0f, 548.8f, 559.2f), Vec3(556.0f, 548.8f, 0.0f)},
+      red);  // left wall
   // The ceiling light, lowered 0.5 mm below the ceiling so that the two never share a plane.
   b.add_quad({Vec3(343.0f, 548.3f, 227.0f), Vec3(343.0f, 548.3f, 332.0f), Vec3(213.0f, 548.3f, 332.0f),
               Vec3(213.0f, 548.3f, 227.0f)},

@@ -107,8 +107,7 @@ std::vector<uint32_t> weld_positions(const std::vector<Vec3>& positions) {
       weld[i] = next_id++;
     }
   }
-  std::sort(order.begin(), order.end(),
-            [&](uint32_t a, uint32_t b) { return less_xyz(positions[a], positions[b]); });
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return less_xyz(positions[a], positions[b]); });
   for (size_t k = 0; k < order.size(); ++k) {
     if (k == 0 || less_xyz(positions[order[k - 1]], positions[order[k]])) ++next_id;
     weld[order[k]] = next_id - 1;
@@ -186,9 +185,8 @@ void compute_smooth_normals(Scene& scene, float crease_degrees) {
     const uint32_t end = start[g + 1];
     if (begin == end) continue;
     order.assign(corners.begin() + begin, corners.begin() + end);
-    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-      return less_xyz(face_normal[a / 3], face_normal[b / 3]);
-    });
+    std::sort(order.begin(), order.end(),
+              [&](uint32_t a, uint32_t b) { return less_xyz(face_normal[a / 3], face_normal[b / 3]); });
     distinct.clear();
     for (uint32_t corner : order) {
       const uint32_t t = corner / 3;
@@ -219,6 +217,16 @@ void compute_smooth_normals(Scene& scene, float crease_degrees) {
   scene.normals = std::move(normals);
 }
 
+void add_quad(Scene& scene, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, uint32_t material) {
+  const auto base = static_cast<uint32_t>(scene.positions.size());
+  scene.positions.insert(scene.positions.end(), {a, b, c, d});
+  Triangle first, second;
+  first.v[0] = base, first.v[1] = base + 1, first.v[2] = base + 2, first.material = material;
+  second.v[0] = base, second.v[1] = base + 2, second.v[2] = base + 3, second.material = material;
+  scene.triangles.push_back(first);
+  scene.triangles.push_back(second);
+}
+
 void add_default_light(Scene& scene) {
   Box3 box = scene.bounds();
   if (box.empty()) box.expand(Vec3(0.0f));
@@ -238,11 +246,6 @@ void add_default_light(Scene& scene) {
   const float x0 = static_cast<float>(center.x - half), x1 = static_cast<float>(center.x + half);
   const float z0 = static_cast<float>(center.z - half), z1 = static_cast<float>(center.z + half);
   const float y = static_cast<float>(height);
-  const uint32_t base = static_cast<uint32_t>(scene.positions.size());
-  scene.positions.push_back(Vec3(x0, y, z0));
-  scene.positions.push_back(Vec3(x1, y, z0));
-  scene.positions.push_back(Vec3(x1, y, z1));
-  scene.positions.push_back(Vec3(x0, y, z1));
 
   // Radiance L over area A at distance d gives irradiance E = L A / d^2 straight below; E = pi makes a white
   // Lambertian surface at the box centre reflect radiance E / pi = 1.
@@ -259,19 +262,8 @@ void add_default_light(Scene& scene) {
   const uint32_t material = static_cast<uint32_t>(scene.materials.size());
   scene.materials.push_back(light);
 
-  // (p0, p1, p2) and (p0, p2, p3) wind counter-clockwise seen from below: the geometric normal is -Y.
-  Triangle a;
-  a.v[0] = base;
-  a.v[1] = base + 1;
-  a.v[2] = base + 2;
-  a.material = material;
-  Triangle b;
-  b.v[0] = base;
-  b.v[1] = base + 2;
-  b.v[2] = base + 3;
-  b.material = material;
-  scene.triangles.push_back(a);
-  scene.triangles.push_back(b);
+  // Counter-clockwise seen from below: the geometric normal is -Y.
+  add_quad(scene, Vec3(x0, y, z0), Vec3(x1, y, z0), Vec3(x1, y, z1), Vec3(x0, y, z1), material);
   collect_emitters(scene);  // keeps the emitter list consistent for callers that add the light late
 }
 

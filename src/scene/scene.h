@@ -2,20 +2,20 @@
 // Plain data with indices instead of pointers. Depends on core only.
 #pragma once
 
-#include "core/ray.h"
-
 #include <string>
 #include <vector>
+
+#include "core/ray.h"
 
 namespace lueur {
 
 /// An OBJ/MTL material reduced to what the Blinn-Phong passes need.
 struct Material {
   std::string name = "default";
-  Vec3 kd{0.5f};   ///< diffuse albedo
-  Vec3 ks{0.0f};   ///< specular albedo; zero selects the report's Blinn-Phong mix with K
-  float ns = 0.0f; ///< Blinn-Phong exponent
-  Vec3 ke{0.0f};   ///< emitted radiance; any positive channel makes the material an area light
+  Vec3 kd{0.5f};    ///< diffuse albedo
+  Vec3 ks{0.0f};    ///< specular albedo; zero selects the report's Blinn-Phong mix with K
+  float ns = 0.0f;  ///< Blinn-Phong exponent
+  Vec3 ke{0.0f};    ///< emitted radiance; any positive channel makes the material an area light
 
   bool emissive() const { return ke.r > 0.0f || ke.g > 0.0f || ke.b > 0.0f; }
   bool has_specular() const { return ks.r > 0.0f || ks.g > 0.0f || ks.b > 0.0f; }
@@ -48,6 +48,10 @@ struct Scene {
   Vec3 shading_normal(uint32_t tri, float u, float v) const;
   Vec3 point(uint32_t tri, float u, float v) const;
 };
+
+/// Appends a planar quad a b c d as two triangles (a b c) and (a c d) with `material`; its geometric normal faces
+/// the side from which a b c d run counter-clockwise.
+void add_quad(Scene& scene, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, uint32_t material);
 
 /// Rebuilds `scene.emitters` from the materials (zero-area emissive triangles are left out).
 void collect_emitters(Scene& scene);
