@@ -29,8 +29,7 @@ Film random_film(int width, int height, uint64_t frames, uint32_t seed) {
 }
 
 std::vector<uint8_t> cpu_reference(const Film& film, const DisplayView& view) {
-  const Image linear = view.layer ? layer_average(film, *view.layer) : combine_passes(film, view.enabled, view.weights);
-  return tonemap_to_rgb8(linear, view.display);
+  return tonemap_to_rgb8(shown_image(film, view.enabled, view.weights, view.layer), view.display);
 }
 
 /// Largest difference per channel between two RGB8 images of the same size.

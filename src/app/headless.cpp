@@ -58,11 +58,7 @@ struct RunFigures {
 /// The PNG through the display shaders of an off-screen EGL or OSMesa context, with the panel if asked.
 void write_gl_screenshot(const AppOptions& options, const Film& film, const TracedScene& traced,
                          const RunFigures& figures) {
-  DisplayView view;
-  view.enabled = options.render.enabled;
-  view.weights = options.weights;
-  view.layer = options.view;
-  view.display = options.display;
+  const DisplayView view = display_view_of(view_from_options(options));
   PanelModel panel;
   if (options.ui) {
     panel.view = view_from_options(options);
@@ -140,11 +136,6 @@ int run_headless(const AppOptions& options) {
   const double elapsed = seconds_since(start);
   if (tty) std::fprintf(stderr, "\n");
 
-  // The EXR holds every rendered layer; PNG and PFM show the combined image or the chosen --view.
-  std::vector<NamedImage> layers;
-  for (int l = 0; l < kLayerCount; ++l)
-    if (film.has(static_cast<Layer>(l)))
-      layers.push_back({std::string(kLayerNames[static_cast<size_t>(l)]), layer_average(film, static_cast<Layer>(l))});
   if (dropped > 0)
     std::fprintf(stderr,
                  "lueur: warning: %llu pixel samples were not finite or would overflow the image and were dropped "
@@ -153,9 +144,9 @@ int run_headless(const AppOptions& options) {
   if (options.gl != HeadlessGl::kNone) {
     write_gl_screenshot(options, film, traced, {elapsed, rays, l2_seconds, bounce_hits, reused});
   } else {
-    const Image shown =
-        options.view ? layer_average(film, *options.view) : combine_passes(film, settings.enabled, options.weights);
-    write_image(options.out_path, shown, layers, options.display, describe_options(options));
+    // The EXR holds every rendered layer; PNG and PFM show the combined image or the chosen --view.
+    write_image(options.out_path, shown_image(film, settings.enabled, options.weights, options.view),
+                film_layer_images(film), options.display, describe_options(options));
   }
 
   std::fprintf(stderr, "lueur: %d frames in %.2f s, %.1f M rays traced (%.2f Mrays/s)\n", options.frames, elapsed,

@@ -2,8 +2,6 @@
 // The display never waits for the tracer: it only ever swaps in a finished snapshot.
 #include "app/viewer.h"
 
-#include "accel/embree_backend.h"
-
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
@@ -18,10 +16,11 @@
 #include <thread>
 #include <vector>
 
-#include "render/camera_controls.h"
+#include "accel/embree_backend.h"
 #include "app/scene_loading.h"
 #include "core/atomic_file.h"
 #include "display/display_pipeline.h"
+#include "render/camera_controls.h"
 #include "render/image_output.h"
 #include "render/progressive_tracer.h"
 #include "ui/imgui_gl.h"
@@ -264,20 +263,14 @@ class Viewer {
     }
     const std::string path = timestamped_name(extension);
     try {
-      std::vector<NamedImage> layers;
-      for (int l = 0; l < kLayerCount; ++l)
-        if (film.has(static_cast<Layer>(l)))
-          layers.push_back(
-              {std::string(kLayerNames[static_cast<size_t>(l)]), layer_average(film, static_cast<Layer>(l))});
-      const DisplayView view = display_view();
-      const Image shown =
-          view.layer ? layer_average(film, *view.layer) : combine_passes(film, view.enabled, view.weights);
+      const DisplayView view = display_view_of(panel_.view);
       AppOptions described = options_;
       described.scene_path = scene_path_;
       ViewState state = panel_.view;
       state.frames = film.frames;
       apply_view(state, described);
-      write_image(path, shown, layers, view.display, describe_options(described));
+      write_image(path, shown_image(film, view.enabled, view.weights, view.layer), film_layer_images(film),
+                  view.display, describe_options(described));
       set_message("saved " + path, false);
     } catch (const std::exception& e) {
       set_message(e.what(), true);
@@ -290,15 +283,6 @@ class Viewer {
   }
 
   // ---- tracer and display -----------------------------------------------------------------------------------
-  DisplayView display_view() const {
-    DisplayView v;
-    v.enabled = panel_.view.render.enabled;
-    v.weights = panel_.view.weights;
-    v.layer = panel_.view.layer;
-    v.display = panel_.view.display;
-    return v;
-  }
-
   void apply_to_tracer() {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
@@ -332,7 +316,7 @@ class Viewer {
       panel_.preview_divisor = shown_.preview_divisor;
     }
     if (w <= 0 || h <= 0) return;
-    const DisplayView view = display_view();
+    const DisplayView view = display_view_of(panel_.view);
     if (shown_.film.width > 0) pipeline_.update(shown_.film, shown_.version, view);
     gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl_.ClearColor(0.0f, 0.0f, 0.0f, 1.0f);

@@ -10,6 +10,7 @@
 #include "display/gl_api.h"
 #include "render/film.h"
 #include "render/tonemap.h"
+#include "render/view_state.h"
 
 namespace lueur {
 
@@ -20,6 +21,11 @@ struct DisplayView {
   std::optional<Layer> layer;  ///< set: show this one layer's average instead of the weighted sum of passes
   DisplaySettings display;
 };
+
+/// The display half of a view: its passes, weights, layer and display transform.
+inline DisplayView display_view_of(const ViewState& view) {
+  return DisplayView{view.render.enabled, view.weights, view.layer, view.display};
+}
 
 /// A rectangle in framebuffer pixels, origin bottom-left as GL has it.
 struct PixelRect {

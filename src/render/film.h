@@ -2,10 +2,11 @@
 // Depends on render settings only.
 #pragma once
 
-#include "render/settings.h"
-
 #include <array>
+#include <optional>
 #include <vector>
+
+#include "render/settings.h"
 
 namespace lueur {
 
@@ -39,5 +40,11 @@ inline Image pass_average(const Film& film, Pass pass) { return layer_average(fi
 /// sum over enabled passes of weight x average(pass).
 Image combine_passes(const Film& film, const std::array<bool, kPassCount>& enabled,
                      const std::array<float, kPassCount>& weights);
+
+/// What a display shows of the film: the average of `layer` when one is chosen, else the weighted combination.
+inline Image shown_image(const Film& film, const std::array<bool, kPassCount>& enabled,
+                         const std::array<float, kPassCount>& weights, const std::optional<Layer>& layer) {
+  return layer ? layer_average(film, *layer) : combine_passes(film, enabled, weights);
+}
 
 }  // namespace lueur

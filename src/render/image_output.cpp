@@ -1,13 +1,13 @@
 // PNG through stb_image_write (plus our own tEXt chunk), PFM by hand, EXR through tinyexr; all written atomically.
 #include "render/image_output.h"
 
-#include "core/atomic_file.h"
-
 #include <stb_image_write.h>
 #include <tinyexr.h>
 
 #include <algorithm>
 #include <cstring>
+
+#include "core/atomic_file.h"
 
 namespace lueur {
 namespace {
@@ -17,7 +17,8 @@ std::string lowercase_extension(const std::string& path) {
   const size_t slash = path.find_last_of('/');
   if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return {};
   std::string ext = path.substr(dot);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }
 
@@ -62,6 +63,14 @@ std::vector<uint8_t> tonemap_to_rgb8(const Image& linear, const DisplaySettings&
     out[i + 2] = quantize_unorm8(d.b);
   }
   return out;
+}
+
+std::vector<NamedImage> film_layer_images(const Film& film) {
+  std::vector<NamedImage> layers;
+  for (int l = 0; l < kLayerCount; ++l)
+    if (film.has(static_cast<Layer>(l)))
+      layers.push_back({std::string(kLayerNames[static_cast<size_t>(l)]), layer_average(film, static_cast<Layer>(l))});
+  return layers;
 }
 
 std::string encode_png(const Image& linear, const DisplaySettings& display, const std::string& metadata) {

@@ -2,11 +2,11 @@
 // Every file is written to a temporary file and renamed. Depends on the render layer's images; no GL.
 #pragma once
 
-#include "render/film.h"
-#include "render/tonemap.h"
-
 #include <string>
 #include <vector>
+
+#include "render/film.h"
+#include "render/tonemap.h"
 
 namespace lueur {
 
@@ -15,6 +15,9 @@ struct NamedImage {
   std::string name;
   Image image;
 };
+
+/// The average of every layer the film holds, named as in kLayerNames: the EXR's layers.
+std::vector<NamedImage> film_layer_images(const Film& film);
 
 /// Encodes a tone-mapped 8-bit RGB PNG; `metadata` goes into a tEXt chunk with the key "lueur" when not empty.
 std::string encode_png(const Image& linear, const DisplaySettings& display, const std::string& metadata = {});

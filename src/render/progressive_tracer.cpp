@@ -106,18 +106,6 @@ RenderSettings ProgressiveTracer::settings() const {
   std::lock_guard lock(mutex_);
   return settings_;
 }
-CameraSpec ProgressiveTracer::camera() const {
-  std::lock_guard lock(mutex_);
-  return camera_;
-}
-bool ProgressiveTracer::paused() const {
-  std::lock_guard lock(mutex_);
-  return paused_;
-}
-uint64_t ProgressiveTracer::frame_limit() const {
-  std::lock_guard lock(mutex_);
-  return frame_limit_;
-}
 TracerStats ProgressiveTracer::stats() const {
   std::lock_guard lock(mutex_);
   return stats_;

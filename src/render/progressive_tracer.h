@@ -68,9 +68,6 @@ class ProgressiveTracer {
 
   uint64_t generation() const;
   RenderSettings settings() const;
-  CameraSpec camera() const;
-  bool paused() const;
-  uint64_t frame_limit() const;
   TracerStats stats() const;
   bool idle() const;  ///< paused, limit reached, no scene or empty size
   int thread_count() const { return pool_.thread_count(); }
