@@ -48,6 +48,15 @@ unsigned link_program(const GlApi& gl) {
 
 DisplayPipeline::DisplayPipeline(const GlApi& gl) : gl_(gl) {
   program_ = link_program(gl_);
+  // Sampler s always reads texture unit s.
+  gl_.UseProgram(program_);
+  for (int s = 0; s < 4; ++s) {
+    const std::string name = "u_slot" + std::to_string(s);
+    gl_.Uniform1i(gl_.GetUniformLocation(program_, name.c_str()), s);
+  }
+  gl_.UseProgram(0);
+  uniforms_ = {gl_.GetUniformLocation(program_, "u_scale"), gl_.GetUniformLocation(program_, "u_exposure"),
+               gl_.GetUniformLocation(program_, "u_tonemap"), gl_.GetUniformLocation(program_, "u_rect")};
   gl_.GenVertexArrays(1, &vertex_array_);
   for (Slot& slot : slots_) {
     gl_.GenTextures(1, &slot.texture);
@@ -128,14 +137,12 @@ void DisplayPipeline::draw(const DisplayView& view, const PixelRect& viewport, c
   for (int s = 0; s < 4; ++s) {
     gl_.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + s));
     gl_.BindTexture(GL_TEXTURE_2D, slots_[static_cast<size_t>(s)].texture);
-    const std::string name = "u_slot" + std::to_string(s);
-    gl_.Uniform1i(gl_.GetUniformLocation(program_, name.c_str()), s);
   }
-  gl_.Uniform4f(gl_.GetUniformLocation(program_, "u_scale"), scale[0], scale[1], scale[2], scale[3]);
-  gl_.Uniform1f(gl_.GetUniformLocation(program_, "u_exposure"), view.display.exposure);
-  gl_.Uniform1i(gl_.GetUniformLocation(program_, "u_tonemap"), static_cast<int>(view.display.tonemap));
+  gl_.Uniform4f(uniforms_.scale, scale[0], scale[1], scale[2], scale[3]);
+  gl_.Uniform1f(uniforms_.exposure, view.display.exposure);
+  gl_.Uniform1i(uniforms_.tonemap, static_cast<int>(view.display.tonemap));
   // gl_FragCoord is in window coordinates, so the rectangle is too.
-  gl_.Uniform4f(gl_.GetUniformLocation(program_, "u_rect"), static_cast<float>(image.x), static_cast<float>(image.y),
+  gl_.Uniform4f(uniforms_.rect, static_cast<float>(image.x), static_cast<float>(image.y),
                 static_cast<float>(image.width), static_cast<float>(image.height));
   gl_.BindVertexArray(vertex_array_);
   gl_.DrawArrays(GL_TRIANGLES, 0, 3);

@@ -62,6 +62,9 @@ class DisplayPipeline {
 
   const GlApi& gl_;
   unsigned program_ = 0, vertex_array_ = 0;
+  struct Uniforms {
+    int scale = -1, exposure = -1, tonemap = -1, rect = -1;
+  } uniforms_;  ///< looked up once: the program never changes
   std::array<Slot, 4> slots_;
   std::array<bool, kLayerCount> film_has_{};
   uint64_t frames_ = 0;
