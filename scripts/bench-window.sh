@@ -2,10 +2,14 @@
 # Display figures of the real window under Xvfb (a benchmark, not a test): the interval between displayed frames
 # while the tracer works (median and worst), and the latency from a camera change to the first displayed frame of
 # the new view. Usage: scripts/bench-window.sh [WIDTHxHEIGHT] [extra lueur options]
+# LUEUR_EXE=path/to/lueur measures that executable instead of building this checkout (before/after figures).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 lueur_install_packages
-lueur_build --target lueur
+if [ -z "${LUEUR_EXE:-}" ]; then
+  lueur_build --target lueur
+  LUEUR_EXE="$LUEUR_BUILD/lueur"
+fi
 size="${1:-512x512}"
 shift || true
 state="$(mktemp -d)/state.json"
@@ -31,4 +35,4 @@ print("frame interval while tracing: median %.1f ms, worst %.1f ms (last 600 fra
 print("camera change -> first frame of the new view: median %.1f ms, worst %.1f ms over %d drags" % (statistics.median(lat), max(lat), len(lat)))
 print("tracer: last frame %.0f ms, %d frames" % (1e3 * s["last_frame_seconds"], s["frames"]))
 PY
-' "$LUEUR_BUILD/lueur" "$size" "$state" "$@"
+' "$LUEUR_EXE" "$size" "$state" "$@"

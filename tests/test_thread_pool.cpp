@@ -12,6 +12,11 @@
 #include <thread>
 #include <vector>
 
+#if defined(__linux__)
+#include <sys/resource.h>
+#include <unistd.h>
+#endif
+
 namespace lueur {
 namespace {
 
@@ -77,6 +82,38 @@ TEST(ThreadPool, SeveralPoolsFromSeveralThreads) {
   for (std::thread& owner : owners) owner.join();
   EXPECT_EQ(total.load(), 3 * 100 * 10);
 }
+
+#if defined(__linux__)
+/// This thread's nice value (Linux keeps one per thread).
+int current_thread_nice() { return getpriority(PRIO_PROCESS, static_cast<id_t>(gettid())); }
+
+TEST(ThreadPool, BackgroundWorkersRunBelowTheCallersPriority) {
+  // The viewer's tracer runs its pool in the background so that the window's thread gets a core first.
+  const int caller_nice = current_thread_nice();
+  for (const ThreadPriority priority : {ThreadPriority::kNormal, ThreadPriority::kBackground}) {
+    ThreadPool pool(3, priority);
+    std::vector<std::atomic<int>> nice_of_worker(3);
+    for (auto& n : nice_of_worker) n = -100;
+    // Enough slow tasks that every worker takes some.
+    pool.parallel_for(300, [&](int, int worker) {
+      nice_of_worker[static_cast<size_t>(worker)] = current_thread_nice();
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    });
+    EXPECT_EQ(nice_of_worker[0].load(), caller_nice) << "the calling thread keeps its own priority";
+    int workers_seen = 0;
+    for (int w = 1; w < 3; ++w) {
+      if (nice_of_worker[static_cast<size_t>(w)] == -100) continue;  // this worker took no task
+      ++workers_seen;
+      if (priority == ThreadPriority::kNormal)
+        EXPECT_EQ(nice_of_worker[static_cast<size_t>(w)].load(), caller_nice);
+      else
+        EXPECT_EQ(nice_of_worker[static_cast<size_t>(w)].load(), std::max(caller_nice, 10));
+    }
+    EXPECT_GT(workers_seen, 0);
+  }
+  EXPECT_EQ(current_thread_nice(), caller_nice);
+}
+#endif
 
 TEST(CancelledFrame, LeavesTheFilmUntouchedWhenCancelledFromAnotherThread) {
   Scene scene = make_default_scene();

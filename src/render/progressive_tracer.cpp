@@ -17,8 +17,11 @@ constexpr int kMinPreviewPixels = 8;
 
 }  // namespace
 
-ProgressiveTracer::ProgressiveTracer(int threads) : pool_(threads) {
-  thread_ = std::thread([this] { run(); });
+ProgressiveTracer::ProgressiveTracer(int threads) : pool_(threads, ThreadPriority::kBackground) {
+  thread_ = std::thread([this] {
+    set_current_thread_priority(ThreadPriority::kBackground);  // it works in the pool's loops too
+    run();
+  });
 }
 
 ProgressiveTracer::~ProgressiveTracer() {

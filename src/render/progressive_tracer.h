@@ -42,6 +42,7 @@ struct TracerSnapshot {
 class ProgressiveTracer {
  public:
   /// `threads` <= 0: one per hardware thread. The tracer starts idle until it has a scene and a non-empty size.
+  /// Its threads run at background priority, so that the display's thread always gets a core when it needs one.
   explicit ProgressiveTracer(int threads = 0);
   ~ProgressiveTracer();
   ProgressiveTracer(const ProgressiveTracer&) = delete;

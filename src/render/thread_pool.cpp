@@ -1,13 +1,33 @@
 // Thread pool: workers sleep on a condition variable between loops and pull indices from an atomic counter.
 #include "render/thread_pool.h"
 
+#if defined(__linux__)
+#include <sys/resource.h>
+#include <unistd.h>
+#endif
+
 namespace lueur {
 
 int hardware_threads() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
 
-ThreadPool::ThreadPool(int threads) {
+void set_current_thread_priority(ThreadPriority priority) {
+  if (priority == ThreadPriority::kNormal) return;
+#if defined(__linux__)
+  // On Linux the nice value belongs to the thread, so PRIO_PROCESS with the thread id lowers this thread only.
+  // Failure (a sandbox that forbids it) only costs responsiveness, never correctness.
+  constexpr int kBackgroundNice = 10;
+  const int current = getpriority(PRIO_PROCESS, static_cast<id_t>(gettid()));
+  if (current < kBackgroundNice) (void)setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kBackgroundNice);
+#endif
+}
+
+ThreadPool::ThreadPool(int threads, ThreadPriority priority) {
   const int total = threads > 0 ? threads : hardware_threads();
-  for (int w = 1; w < total; ++w) workers_.emplace_back([this, w] { worker_loop(w); });
+  for (int w = 1; w < total; ++w)
+    workers_.emplace_back([this, w, priority] {
+      set_current_thread_priority(priority);
+      worker_loop(w);
+    });
 }
 
 ThreadPool::~ThreadPool() {

@@ -11,10 +11,24 @@
 
 namespace lueur {
 
+/// How the pool's threads compete for the CPU with the rest of the process.
+enum class ThreadPriority {
+  kNormal,
+  /// Below the process's other threads (nice +10 on Linux): a viewer's tracer uses every idle cycle, yet the
+  /// window's thread and the GL driver's threads run first when they need a core, so drawing never waits for it.
+  kBackground,
+};
+
+/// Lowers the calling thread's scheduling priority as `priority` says (per thread on Linux; a no-op elsewhere).
+/// A lowered priority cannot be raised again without privileges, so only threads that stay in the background
+/// call it.
+void set_current_thread_priority(ThreadPriority priority);
+
 class ThreadPool {
  public:
-  /// `threads` <= 0 means one per hardware thread. The calling thread works too, so threads - 1 are spawned.
-  explicit ThreadPool(int threads = 0);
+  /// `threads` <= 0 means one per hardware thread. The calling thread works too, so threads - 1 are spawned;
+  /// the spawned ones run at `priority` (the caller sets its own).
+  explicit ThreadPool(int threads = 0, ThreadPriority priority = ThreadPriority::kNormal);
   ~ThreadPool();
   ThreadPool(const ThreadPool&) = delete;
   ThreadPool& operator=(const ThreadPool&) = delete;
