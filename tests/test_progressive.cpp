@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <fstream>
 #include <random>
 #include <thread>
 
 #include "render/progressive_tracer.h"
 #include "render/renderer.h"
 #include "scene/default_scene.h"
+#include "scene/obj_loader.h"
 #include "test_support.h"
 
 namespace lueur {
@@ -144,24 +146,23 @@ void expect_whole_frame(const TracerSnapshot& s, float le) {
   }
 }
 
-TEST(ProgressiveTracer, StressEverySnapshotIsWholeAndCurrent) {
-  // Each scene's walls emit a different Le, so a snapshot of a replaced scene shows up as a wrong value.
-  std::vector<std::shared_ptr<const TracedScene>> scenes;
-  for (int i = 1; i <= 3; ++i)
-    scenes.push_back(prepare_scene(test::make_closed_emitting_box(1.0f, Vec3(0.5f), Vec3(static_cast<float>(i)))));
-  ProgressiveTracer tracer(3);
-  CameraSpec camera{Vec3(0.0f, 0.0f, 0.5f), Vec3(0.0f), Vec3(0.0f, 1.0f, 0.0f), 60.0f};
-  RenderSettings settings = small_settings(16, 16);
-  settings.enabled = {true, false, false, false};
-  tracer.set_settings(settings);
-  tracer.set_camera(camera);
-  tracer.set_scene(scenes[0]);
-
+/// The display side of the stress tests: takes snapshots as fast as it can until `done` and checks each one that
+/// is certainly of the current scene. Scene swaps run under a sequence lock: `scene_epoch` is odd while one is in
+/// flight, and `current_scene` holds the index whose walls emit Le = index + 1.
+struct SnapshotChecker {
+  ProgressiveTracer& tracer;
   std::atomic<bool> done{false};
-  // A sequence lock around scene swaps: `scene_epoch` is odd while one is in flight.
   std::atomic<int> scene_epoch{0}, current_scene{0};
   std::atomic<int> checked{0};
-  std::thread display([&] {
+
+  void swap_scene(int index, std::shared_ptr<const TracedScene> scene) {
+    ++scene_epoch;
+    current_scene = index;
+    tracer.set_scene(std::move(scene));
+    ++scene_epoch;
+  }
+
+  void run() {
     TracerSnapshot snapshot;
     while (!done) {
       const int epoch_before = scene_epoch.load();
@@ -176,7 +177,33 @@ TEST(ProgressiveTracer, StressEverySnapshotIsWholeAndCurrent) {
       }
       std::this_thread::yield();
     }
-  });
+  }
+};
+
+/// Leaves the tracer running normally after a storm of changes: it must still make progress (no deadlock).
+void expect_progress_after_the_storm(ProgressiveTracer& tracer, RenderSettings settings) {
+  settings.width = settings.height = 16;
+  tracer.set_settings(settings);
+  tracer.set_frame_limit(0);
+  tracer.set_paused(false);
+  EXPECT_TRUE(tracer.wait_for_frames(3, 60.0));
+}
+
+TEST(ProgressiveTracer, StressEverySnapshotIsWholeAndCurrent) {
+  // Each scene's walls emit a different Le, so a snapshot of a replaced scene shows up as a wrong value.
+  std::vector<std::shared_ptr<const TracedScene>> scenes;
+  for (int i = 1; i <= 3; ++i)
+    scenes.push_back(prepare_scene(test::make_closed_emitting_box(1.0f, Vec3(0.5f), Vec3(static_cast<float>(i)))));
+  ProgressiveTracer tracer(3);
+  CameraSpec camera{Vec3(0.0f, 0.0f, 0.5f), Vec3(0.0f), Vec3(0.0f, 1.0f, 0.0f), 60.0f};
+  RenderSettings settings = small_settings(16, 16);
+  settings.enabled = {true, false, false, false};
+  tracer.set_settings(settings);
+  tracer.set_camera(camera);
+  tracer.set_scene(scenes[0]);
+
+  SnapshotChecker checker{tracer};
+  std::thread display([&] { checker.run(); });
 
   std::mt19937 random(7);
   for (int change = 0; change < 3000; ++change) {
@@ -201,10 +228,7 @@ TEST(ProgressiveTracer, StressEverySnapshotIsWholeAndCurrent) {
         break;
       case 5: {
         const int s = static_cast<int>(random() % scenes.size());
-        ++scene_epoch;
-        current_scene = s;
-        tracer.set_scene(scenes[static_cast<size_t>(s)]);
-        ++scene_epoch;
+        checker.swap_scene(s, scenes[static_cast<size_t>(s)]);
         break;
       }
       case 6:
@@ -215,15 +239,119 @@ TEST(ProgressiveTracer, StressEverySnapshotIsWholeAndCurrent) {
         break;
     }
   }
-  // Leave it running normally at the end: it must still make progress (no deadlock).
-  settings.width = settings.height = 16;
-  tracer.set_settings(settings);
-  tracer.set_frame_limit(0);
-  tracer.set_paused(false);
-  EXPECT_TRUE(tracer.wait_for_frames(3, 60.0));
-  done = true;
+  expect_progress_after_the_storm(tracer, settings);
+  checker.done = true;
   display.join();
-  EXPECT_GT(checked.load(), 10);
+  EXPECT_GT(checker.checked.load(), 10);
+}
+
+/// Writes `scene` as an OBJ file and its materials as an MTL file beside it (Kd and Ke only).
+std::string write_obj(const Scene& scene, const std::string& dir, const std::string& stem) {
+  std::ofstream mtl(dir + "/" + stem + ".mtl");
+  for (const Material& m : scene.materials)
+    mtl << "newmtl " << m.name << "\nKd " << m.kd.r << ' ' << m.kd.g << ' ' << m.kd.b << "\nKe " << m.ke.r << ' '
+        << m.ke.g << ' ' << m.ke.b << '\n';
+  const std::string path = dir + "/" + stem + ".obj";
+  std::ofstream obj(path);
+  obj << "mtllib " << stem << ".mtl\n";
+  for (const Vec3& p : scene.positions) obj << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+  for (const Triangle& t : scene.triangles)
+    obj << "usemtl " << scene.materials[t.material].name << "\nf " << t.v[0] + 1 << ' ' << t.v[1] + 1 << ' '
+        << t.v[2] + 1 << '\n';
+  return path;
+}
+
+TEST(ProgressiveTracer, StressSettingsChangesWhileAnotherThreadReloadsScenes) {
+  // The viewer's two writers at once: the UI thread changes every setting, camera, size (0 included), pause,
+  // reset and frame limit, while a loader thread keeps reading OBJ files from disk, building their BVH and
+  // swapping them in. Each file's walls emit a different Le, so a snapshot of a replaced scene shows.
+  const std::string dir = test::make_temp_dir("stress-reload");
+  std::vector<std::string> files;
+  for (int i = 1; i <= 3; ++i)
+    files.push_back(write_obj(test::make_closed_emitting_box(1.0f, Vec3(0.5f), Vec3(static_cast<float>(i))), dir,
+                              "box" + std::to_string(i)));
+  ProgressiveTracer tracer(3);
+  CameraSpec camera{Vec3(0.0f, 0.0f, 0.5f), Vec3(0.0f), Vec3(0.0f, 1.0f, 0.0f), 60.0f};
+  RenderSettings settings = small_settings(16, 16);
+  tracer.set_settings(settings);
+  tracer.set_camera(camera);
+  tracer.set_scene(prepare_scene(load_obj(files[0]).scene));
+
+  SnapshotChecker checker{tracer};
+  std::thread display([&] { checker.run(); });
+  std::atomic<bool> changes_done{false};
+  std::atomic<int> reloads{0};
+  std::thread loader([&] {
+    std::mt19937 random(11);
+    while (!changes_done) {
+      const int s = static_cast<int>(random() % files.size());
+      LoadOptions options;
+      options.smooth_normals = random() % 2 == 0;
+      checker.swap_scene(s, prepare_scene(load_obj(files[static_cast<size_t>(s)], options).scene));
+      ++reloads;
+    }
+  });
+
+  std::mt19937 random(7);
+  auto pick = [&](int n) { return static_cast<int>(random() % static_cast<unsigned>(n)); };
+  for (int change = 0; change < 3000; ++change) {
+    switch (pick(12)) {
+      case 0:
+        camera.eye = Vec3(std::uniform_real_distribution<float>(-0.5f, 0.5f)(random), 0.0f, 0.5f);
+        camera.fovy_degrees = 30.0f + static_cast<float>(pick(60));
+        tracer.set_camera(camera);
+        break;
+      case 1:
+        settings.width = pick(40);
+        settings.height = pick(40);
+        tracer.set_settings(settings);
+        break;
+      case 2:
+        tracer.set_paused(pick(2) == 0);
+        break;
+      case 3:
+        tracer.reset();
+        break;
+      case 4:
+        tracer.set_frame_limit(static_cast<uint64_t>(pick(4)));
+        break;
+      case 5:  // Le stays on: it is what the checker reads
+        for (size_t p = 1; p < kPassCount; ++p) settings.enabled[p] = pick(2) == 0;
+        tracer.set_settings(settings);
+        break;
+      case 6:
+        settings.lights = static_cast<LightStrategy>(pick(4));
+        settings.l1_rays = 1 + pick(4);
+        tracer.set_settings(settings);
+        break;
+      case 7:
+        settings.reuse = static_cast<ReuseMode>(pick(3));
+        settings.reuse_diffuse_only = pick(2) == 0;
+        settings.recompute_ratio = 0.125f * static_cast<float>(1 + pick(8));
+        settings.l2_rays = 1 + pick(3);
+        tracer.set_settings(settings);
+        break;
+      case 8:
+        settings.ao_rays = 1 + pick(3);
+        settings.ao_radius = 0.1f * static_cast<float>(pick(10));
+        settings.blinn_k = 0.1f * static_cast<float>(pick(11));
+        tracer.set_settings(settings);
+        break;
+      case 9:
+        tracer.set_previews(pick(2) == 0);
+        break;
+      default:
+        std::this_thread::sleep_for(std::chrono::microseconds(random() % 2000));
+        break;
+    }
+  }
+  changes_done = true;
+  loader.join();
+  expect_progress_after_the_storm(tracer, settings);
+  checker.done = true;
+  display.join();
+  EXPECT_GT(reloads.load(), 10);
+  EXPECT_GT(checker.checked.load(), 10);
 }
 
 }  // namespace
