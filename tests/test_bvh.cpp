@@ -593,6 +593,14 @@ TEST(BvhVersusBruteForce, ThousandCopiesOfOneTriangle) {
 
 TEST(BvhVersusBruteForce, ClosedSphere) { run_scene({"sphere", make_sphere(40, 80, 3.0f), kSphereRays}, 106); }
 
+// Above 65536 triangles the top of the tree bins and bounds its nodes on several threads (one slice each): the
+// slices' merged bins must give a correct tree.
+TEST(BvhVersusBruteForce, LargeSphereBuiltWithParallelBinning) {
+  const Corners corners = make_sphere(160, 320, 3.0f);
+  ASSERT_GT(corners.size() / 3, 100000u);
+  run_scene({"large sphere", corners, 2000}, 107);
+}
+
 // The tests above trace the tree this CPU gets (8-wide AVX when it has AVX); these check the 4-wide SSE kernels,
 // which CPUs without AVX run, against brute force on any machine.
 TEST(BvhVersusBruteForce, SseKernelsOnAnyMachine) {

@@ -4,6 +4,8 @@
 
 #include <vector>
 
+#include "core/huge_pages.h"
+
 #include "core/ray.h"
 
 namespace lueur {
@@ -59,14 +61,14 @@ struct alignas(16) BvhTriangleGroup {
 };
 
 struct Bvh {
-  std::vector<BvhNode> nodes;          ///< the binned-SAH BVH2; nodes[0] is the root
-  std::vector<BvhTriangle> triangles;  ///< reordered once after the build so leaves read them directly
+  HugePageVector<BvhNode> nodes;  ///< the binned-SAH BVH2; nodes[0] is the root
+  HugePageVector<BvhTriangle> triangles;  ///< reordered once after the build so leaves read them directly
   /// What the queries traverse: the BVH2 collapsed into a 4-wide tree (wide_nodes[0] is the root), or an 8-wide one
   /// (wide8_nodes) when the CPU has AVX, over leaves of triangle groups. The BVH2 above is kept as the build's
   /// record (tests check its invariants).
-  std::vector<BvhWideNode> wide_nodes;
-  std::vector<BvhWideNode8> wide8_nodes;
-  std::vector<BvhTriangleGroup> groups;
+  HugePageVector<BvhWideNode> wide_nodes;
+  HugePageVector<BvhWideNode8> wide8_nodes;
+  HugePageVector<BvhTriangleGroup> groups;
   bool empty() const { return triangles.empty(); }
   /// Bytes the queries read: the wide nodes and the triangle groups.
   size_t traversal_bytes() const {

@@ -4,8 +4,11 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <stdexcept>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "bvh/bvh.h"
 
@@ -27,8 +30,35 @@ constexpr uint32_t kSahDepthLimit = kBvhMaxDepth - 32;
 static_assert(kBvhMaxLeafSize >= 1);
 // Subtrees this small (in triangles) are built in parallel once the top of the tree is done.
 constexpr uint32_t kParallelGrain = 4096;
+// Above the subtrees, a node's bounds and bins are computed by several threads, each over a slice of at least this
+// many triangles (below it, starting the threads costs more than it saves).
+constexpr uint32_t kParallelSlice = 32768;
 
-/// A triangle during the build: its box, the centre of that box (the binned position) and its index in `prepared`.
+/// Threads for the build: every hardware thread, within reason (asked once: the query reads a file on Linux).
+unsigned build_threads() {
+  static const unsigned threads = std::max(1u, std::min(std::thread::hardware_concurrency(), 64u));
+  return threads;
+}
+
+/// How many slices of at least kParallelSlice triangles a range of `count` is cut into (1: work serially).
+unsigned slice_count(uint32_t count) {
+  return static_cast<unsigned>(std::min<uint32_t>(build_threads(), std::max(1u, count / kParallelSlice)));
+}
+
+/// Cuts [begin, end) into `slices` consecutive slices and calls work(slice, slice_begin, slice_end) for each on
+/// its own thread. Callers merge the slices' results in slice order with exact operations (box min / max, integer
+/// counts), so the result does not depend on the slicing.
+template <class Work>
+void for_each_slice(uint32_t begin, uint32_t end, unsigned slices, Work&& work) {
+  const uint64_t count = end - begin;
+  auto slice_begin = [&](unsigned k) { return begin + static_cast<uint32_t>(count * k / slices); };
+  std::vector<std::thread> helpers;
+  for (unsigned k = 1; k < slices; ++k) helpers.emplace_back([&, k] { work(k, slice_begin(k), slice_begin(k + 1)); });
+  work(0u, begin, slice_begin(1));
+  for (std::thread& t : helpers) t.join();
+}
+
+/// A triangle during the build: its box, the centre of that box (the binned position) and its input index.
 struct PrimRef {
   Box3 box;
   Vec3 centroid;
@@ -39,6 +69,7 @@ struct Bin {
   Box3 box;
   uint32_t count = 0;
 };
+using Bins = std::array<std::array<Bin, kBinCount>, 3>;
 
 struct Split {
   int axis = -1;  ///< -1: no usable split
@@ -59,17 +90,9 @@ int bin_of(float c, float lo, float scale) {
   return f > 0.0f ? static_cast<int>(f) : 0;
 }
 
-/// Best binned-SAH split of prims[begin, end) over all three axes; cost is sum(area * groups) of the two sides.
-Split find_sah_split(const std::vector<PrimRef>& prims, uint32_t begin, uint32_t end, const Box3& centroids) {
-  std::array<std::array<Bin, kBinCount>, 3> bins{};
-  std::array<float, 3> scale{};
-  std::array<bool, 3> usable{};
-  for (int axis = 0; axis < 3; ++axis) {
-    const float extent = centroids.hi[axis] - centroids.lo[axis];
-    scale[axis] = static_cast<float>(kBinCount) / extent;
-    // All centroids on one plane, or an extent so small (or large) that binning would be meaningless.
-    usable[axis] = extent > 0.0f && std::isfinite(scale[axis]) && scale[axis] > 0.0f;
-  }
+/// Adds prims[begin, end) to `bins` along every usable axis.
+void bin_prims(const HugePageVector<PrimRef>& prims, uint32_t begin, uint32_t end, const Box3& centroids,
+               const std::array<float, 3>& scale, const std::array<bool, 3>& usable, Bins& bins) {
   for (uint32_t i = begin; i < end; ++i) {
     const PrimRef& p = prims[i];
     for (int axis = 0; axis < 3; ++axis) {
@@ -78,6 +101,33 @@ Split find_sah_split(const std::vector<PrimRef>& prims, uint32_t begin, uint32_t
       bin.box.expand(p.box);
       ++bin.count;
     }
+  }
+}
+
+/// Best binned-SAH split of prims[begin, end) over all three axes; cost is sum(area * groups) of the two sides.
+Split find_sah_split(const HugePageVector<PrimRef>& prims, uint32_t begin, uint32_t end, const Box3& centroids) {
+  std::array<float, 3> scale{};
+  std::array<bool, 3> usable{};
+  for (int axis = 0; axis < 3; ++axis) {
+    const float extent = centroids.hi[axis] - centroids.lo[axis];
+    scale[axis] = static_cast<float>(kBinCount) / extent;
+    // All centroids on one plane, or an extent so small (or large) that binning would be meaningless.
+    usable[axis] = extent > 0.0f && std::isfinite(scale[axis]) && scale[axis] > 0.0f;
+  }
+  Bins bins{};
+  if (const unsigned slices = slice_count(end - begin); slices == 1) {
+    bin_prims(prims, begin, end, centroids, scale, usable, bins);
+  } else {  // the top of the tree: each slice bins into its own array, merged exactly
+    std::vector<Bins> slice_bins(slices);
+    for_each_slice(begin, end, slices, [&](unsigned k, uint32_t b, uint32_t e) {
+      bin_prims(prims, b, e, centroids, scale, usable, slice_bins[k]);
+    });
+    for (const Bins& slice : slice_bins)
+      for (int axis = 0; axis < 3; ++axis)
+        for (int i = 0; i < kBinCount; ++i) {
+          bins[axis][i].box.expand(slice[axis][i].box);
+          bins[axis][i].count += slice[axis][i].count;
+        }
   }
 
   Split best;
@@ -108,7 +158,7 @@ Split find_sah_split(const std::vector<PrimRef>& prims, uint32_t begin, uint32_t
 }
 
 /// Splits prims[begin, end) at the median centroid along the widest centroid axis; both halves are non-empty.
-uint32_t median_split(std::vector<PrimRef>& prims, uint32_t begin, uint32_t end, const Box3& centroids) {
+uint32_t median_split(HugePageVector<PrimRef>& prims, uint32_t begin, uint32_t end, const Box3& centroids) {
   const Vec3 extent = centroids.extent();
   int axis = 0;
   if (extent.y > extent[axis]) axis = 1;
@@ -121,12 +171,26 @@ uint32_t median_split(std::vector<PrimRef>& prims, uint32_t begin, uint32_t end,
 
 /// Decides one node: its box, and either a leaf or a split whose two children are appended to `nodes` and
 /// pushed on `tasks`.
-void build_node(std::vector<PrimRef>& prims, std::vector<BvhNode>& nodes, const BuildTask& task,
+void build_node(HugePageVector<PrimRef>& prims, HugePageVector<BvhNode>& nodes, const BuildTask& task,
                 std::vector<BuildTask>& tasks) {
   Box3 box, centroids;
-  for (uint32_t i = task.begin; i < task.end; ++i) {
-    box.expand(prims[i].box);
-    centroids.expand(prims[i].centroid);
+  auto bound = [&](uint32_t b, uint32_t e, Box3& slice_box, Box3& slice_centroids) {
+    for (uint32_t i = b; i < e; ++i) {
+      slice_box.expand(prims[i].box);
+      slice_centroids.expand(prims[i].centroid);
+    }
+  };
+  if (const unsigned slices = slice_count(task.end - task.begin); slices == 1) {
+    bound(task.begin, task.end, box, centroids);
+  } else {
+    std::vector<std::pair<Box3, Box3>> slice_bounds(slices);
+    for_each_slice(task.begin, task.end, slices, [&](unsigned k, uint32_t b, uint32_t e) {
+      bound(b, e, slice_bounds[k].first, slice_bounds[k].second);
+    });
+    for (const auto& [slice_box, slice_centroids] : slice_bounds) {
+      box.expand(slice_box);
+      centroids.expand(slice_centroids);
+    }
   }
   const uint32_t count = task.end - task.begin;
 
@@ -190,9 +254,9 @@ Bvh build_bvh(const std::vector<Vec3>& corners) {
   const size_t input_count = corners.size() / 3;
   if (input_count >= kNoHit) throw std::length_error("build_bvh: too many triangles for 32-bit indices");
 
-  std::vector<BvhTriangle> prepared;  // in input order, only the kept ones
-  std::vector<PrimRef> prims;
-  prepared.reserve(input_count);
+  // Only the kept triangles' boxes are held during the build; their prepared form (edges) is made once, in leaf
+  // order, at the end, rather than kept in input order and copied (a 2M-triangle scene would write 96 MB twice).
+  HugePageVector<PrimRef> prims;
   prims.reserve(input_count);
   for (size_t i = 0; i < input_count; ++i) {
     const Vec3& a = corners[3 * i];
@@ -211,8 +275,7 @@ Bvh build_bvh(const std::vector<Vec3>& corners) {
     p.box.expand(c);
     // Halving before adding cannot overflow, unlike (lo + hi) / 2 near the float range limits.
     p.centroid = 0.5f * p.box.lo + 0.5f * p.box.hi;
-    p.index = static_cast<uint32_t>(prepared.size());
-    prepared.push_back(tri);
+    p.index = static_cast<uint32_t>(i);
     prims.push_back(p);
   }
   if (prims.empty()) return bvh;
@@ -236,11 +299,11 @@ Bvh build_bvh(const std::vector<Vec3>& corners) {
     build_node(prims, bvh.nodes, task, tasks);
   }
 
-  std::vector<std::vector<BvhNode>> subtrees(deferred.size());
+  std::vector<HugePageVector<BvhNode>> subtrees(deferred.size());
   std::atomic<size_t> next{0};
   auto worker = [&] {
     for (size_t i; (i = next.fetch_add(1)) < deferred.size();) {
-      std::vector<BvhNode>& local = subtrees[i];
+      HugePageVector<BvhNode>& local = subtrees[i];
       local.push_back(BvhNode{});
       std::vector<BuildTask> stack{{0, deferred[i].begin, deferred[i].end, deferred[i].depth}};
       while (!stack.empty()) {
@@ -250,7 +313,7 @@ Bvh build_bvh(const std::vector<Vec3>& corners) {
       }
     }
   };
-  const unsigned threads = std::max(1u, std::min(std::thread::hardware_concurrency(), 64u));
+  const unsigned threads = build_threads();
   std::vector<std::thread> helpers;
   for (unsigned t = 1; t < threads && t < deferred.size(); ++t) helpers.emplace_back(worker);
   worker();
@@ -258,7 +321,7 @@ Bvh build_bvh(const std::vector<Vec3>& corners) {
 
   // Local node 0 becomes the deferred node itself; local node k > 0 goes to base + k - 1.
   for (size_t i = 0; i < deferred.size(); ++i) {
-    const std::vector<BvhNode>& local = subtrees[i];
+    const HugePageVector<BvhNode>& local = subtrees[i];
     const auto base = static_cast<uint32_t>(bvh.nodes.size());
     auto place = [&](BvhNode n) {
       if (n.count == 0) n.first = base + n.first - 1;
@@ -269,7 +332,9 @@ Bvh build_bvh(const std::vector<Vec3>& corners) {
   }
 
   bvh.triangles.reserve(prims.size());
-  for (const PrimRef& p : prims) bvh.triangles.push_back(prepared[p.index]);
+  for (const PrimRef& p : prims)
+    bvh.triangles.push_back(make_bvh_triangle(corners[3 * size_t{p.index}], corners[3 * size_t{p.index} + 1],
+                                              corners[3 * size_t{p.index} + 2], p.index));
   build_wide_bvh(bvh);
   return bvh;
 }

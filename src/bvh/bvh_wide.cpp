@@ -56,7 +56,7 @@ uint32_t pack_leaf(Bvh& bvh, const BvhNode& leaf, uint32_t& group_count) {
 
 /// The collapse into nodes of W children.
 template <typename Node, uint32_t W>
-void collapse(Bvh& bvh, std::vector<Node>& wide_nodes) {
+void collapse(Bvh& bvh, HugePageVector<Node>& wide_nodes) {
   wide_nodes.reserve(bvh.nodes.size() / (W / 2) + 1);
   bvh.groups.reserve(bvh.triangles.size() / 2 + 1);
 
