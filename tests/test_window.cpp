@@ -154,6 +154,29 @@ TEST_F(Window, SyntheticInputDrivesThePanelAndTheCamera) {
       << "the render size did not follow the window";
 }
 
+TEST_F(Window, SurvivesATinyWindowAndBeingHidden) {
+  // Shrunk to a single pixel, the render follows (and still traces).
+  xdotool("windowsize " + window_ + " 1 1");
+  ASSERT_TRUE(wait_for([](const json& s) { return s["view"]["width"] == 1 && s["view"]["height"] == 1; }, 10.0))
+      << "the render size did not follow a 1x1 window";
+  // Unmapped, as a minimised window is: nothing is shown, and the viewer must neither crash nor hang.
+  xdotool("windowunmap " + window_);
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  int status = 0;
+  ASSERT_NE(::waitpid(pid_, &status, WNOHANG), pid_) << "the viewer exited while its window was hidden";
+  // Shown again at a usable size: it renders and draws at that size.
+  xdotool("windowmap " + window_);
+  xdotool("windowsize " + window_ + " 400 300");
+  const double drawn = state()["display_frames"].get<double>();
+  EXPECT_TRUE(wait_for(
+      [&](const json& s) {
+        return s["view"]["width"] == 400 && s["view"]["height"] == 300 && s["frames"].get<int>() >= 1 &&
+               s["display_frames"].get<double>() > drawn + 10;
+      },
+      60.0))
+      << "after being hidden the viewer did not render and draw at the new size";
+}
+
 TEST_F(Window, KeepsDrawingWhileTheTracerWorks) {
   const json before = state();
   std::this_thread::sleep_for(std::chrono::seconds(3));
