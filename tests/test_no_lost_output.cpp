@@ -168,6 +168,31 @@ TEST_F(NoLostOutput, KilledMidWriteKeepsTheOldFile) {
   EXPECT_EQ(entries(dir_), std::set<std::string>{"image.exr"});
 }
 
+TEST_F(NoLostOutput, TheNamedFallbackKilledMidWriteKeepsTheOldFile) {
+  // Where the filesystem has no O_TMPFILE, the bytes go to a hidden named file first.
+  constexpr const char* kNoTmpfile = "LUEUR_TEST_NO_TMPFILE=1";
+  Child first(exr_render(out_, 1), {kNoTmpfile});
+  ASSERT_EQ(first.reap(), 0) << first.output();
+  const std::string old_bytes = test::read_file(out_);
+  EXPECT_EQ(entries(dir_), std::set<std::string>{"image.exr"}) << "the named temporary file was not renamed";
+
+  Child second(exr_render(out_, 2), {kPause, kNoTmpfile});
+  ASSERT_TRUE(second.wait_for_output("paused mid-write of '" + out_ + "'", kStartupSeconds)) << second.output();
+  const pid_t pid = second.pid();
+  const std::string temp = named_temp_path(out_, static_cast<long>(pid));
+  EXPECT_TRUE(test::file_exists(temp)) << "the fallback should be writing " << temp;
+  EXPECT_EQ(second.kill_now(), 128 + SIGKILL);
+  EXPECT_EQ(test::read_file(out_), old_bytes) << "the old file must survive a kill mid-write";
+  std::set<std::string> left = entries(dir_);
+  left.erase("image.exr");
+  left.erase(fs::path(temp).filename().string());  // hidden, and never taken for output
+  EXPECT_TRUE(left.empty()) << "left behind: " << *left.begin();
+
+  Child third(exr_render(out_, 2), {kNoTmpfile});
+  ASSERT_EQ(third.reap(), 0) << third.output();
+  EXPECT_EQ(test::read_file(out_), new_bytes_);
+}
+
 TEST_F(NoLostOutput, KilledMidWriteWithNoOldFileLeavesNothing) {
   Child child(exr_render(out_, 2), {kPause});
   ASSERT_TRUE(child.wait_for_output("paused mid-write", kStartupSeconds)) << child.output();

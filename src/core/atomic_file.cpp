@@ -28,6 +28,12 @@ double test_pause_seconds() {
   return (*end == '\0' && seconds > 0.0) ? seconds : 0.0;
 }
 
+/// The LUEUR_TEST_NO_TMPFILE hook: take the named fallback, as a filesystem without O_TMPFILE makes the writer do.
+bool unnamed_temp_disabled() {
+  const char* text = std::getenv("LUEUR_TEST_NO_TMPFILE");
+  return text != nullptr && std::strcmp(text, "1") == 0;
+}
+
 /// Writes every byte and flushes it to disk (pausing halfway for the test hook). Returns 0 or an errno value.
 int write_and_sync(int fd, std::string_view bytes, const std::string& path) {
   const double pause = test_pause_seconds();
@@ -89,7 +95,7 @@ void write_file_atomically(const std::string& path, std::string_view bytes) {
   const std::string temp = named_temp_path(path, static_cast<long>(::getpid()));
 
   // First choice: an unnamed file, named only for the instant between linkat and rename.
-  int fd = ::open(directory_of(path).c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0644);
+  int fd = unnamed_temp_disabled() ? -1 : ::open(directory_of(path).c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0644);
   if (fd >= 0) {
     const int write_error = write_and_sync(fd, bytes, path);
     const int link_error = write_error == 0 ? link_unnamed(fd, temp) : 0;

@@ -22,7 +22,8 @@ struct IoError : std::runtime_error {
 ///
 /// Test hook: with the environment variable LUEUR_TEST_PAUSE_MID_WRITE=SECONDS, the writer stops after half of
 /// the bytes, prints "lueur: test hook: paused mid-write of 'PATH'" on stderr and sleeps that long before going
-/// on, so that a test can kill the process in the middle of a write deterministically.
+/// on, so that a test can kill the process in the middle of a write deterministically. With
+/// LUEUR_TEST_NO_TMPFILE=1 it skips O_TMPFILE and takes the named fallback, as on a filesystem without it.
 void write_file_atomically(const std::string& path, std::string_view bytes);
 
 /// The name of the hidden temporary file used beside `path` where O_TMPFILE is not available.
