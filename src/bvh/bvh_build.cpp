@@ -5,10 +5,13 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <thread>
 #include <utility>
 #include <vector>
+
+#include <immintrin.h>
 
 #include "bvh/bvh.h"
 
@@ -27,7 +30,7 @@ inline float group_cost(uint32_t count) { return static_cast<float>((count + kBv
 // From this depth on nodes are split by object median only. Median splits halve the count, so leaves are
 // reached within 32 more levels even for 2^32 triangles, which keeps every node shallower than kBvhMaxDepth.
 constexpr uint32_t kSahDepthLimit = kBvhMaxDepth - 32;
-static_assert(kBvhMaxLeafSize >= 1);
+static_assert(kBvhMaxLeafSize >= kBvhWidth, "nodes of kBvhWidth triangles or fewer are always leaves");
 // Subtrees this small (in triangles) are built in parallel once the top of the tree is done.
 constexpr uint32_t kParallelGrain = 4096;
 // Above the subtrees, a node's bounds and bins are computed by several threads, each over a slice of at least this
@@ -58,15 +61,42 @@ void for_each_slice(uint32_t begin, uint32_t end, unsigned slices, Work&& work) 
   for (std::thread& t : helpers) t.join();
 }
 
-/// A triangle during the build: its box, the centre of that box (the binned position) and its input index.
+/// A box in two SSE registers (x, y, z, unused): the binning's inner loop grows boxes with one min and one max.
+struct SseBox {
+  __m128 lo = _mm_set1_ps(kInfinity);
+  __m128 hi = _mm_set1_ps(-kInfinity);
+  void expand(__m128 point_lo, __m128 point_hi) {
+    lo = _mm_min_ps(lo, point_lo);
+    hi = _mm_max_ps(hi, point_hi);
+  }
+  void expand(const SseBox& b) { expand(b.lo, b.hi); }
+  Box3 box() const {
+    alignas(16) float l[4], h[4];
+    _mm_store_ps(l, lo);
+    _mm_store_ps(h, hi);
+    return Box3{Vec3(l[0], l[1], l[2]), Vec3(h[0], h[1], h[2])};
+  }
+};
+
+/// A triangle during the build: its box, with its input index in the fourth lane of `lo`. Its centroid (the
+/// binned position) is 0.5 lo + 0.5 hi, computed where needed: halving before adding cannot overflow.
 struct PrimRef {
-  Box3 box;
-  Vec3 centroid;
-  uint32_t index;
+  __m128 lo, hi;
+  uint32_t index() const { return static_cast<uint32_t>(_mm_extract_ps(lo, 3)); }
+  __m128 centroid() const {
+    const __m128 half = _mm_set1_ps(0.5f);
+    return _mm_add_ps(_mm_mul_ps(half, lo), _mm_mul_ps(half, hi));
+  }
+  float centroid(int axis) const {
+    alignas(16) float l[4], h[4];
+    _mm_store_ps(l, lo);
+    _mm_store_ps(h, hi);
+    return 0.5f * l[axis] + 0.5f * h[axis];
+  }
 };
 
 struct Bin {
-  Box3 box;
+  SseBox box;
   uint32_t count = 0;
 };
 using Bins = std::array<std::array<Bin, kBinCount>, 3>;
@@ -90,16 +120,32 @@ int bin_of(float c, float lo, float scale) {
   return f > 0.0f ? static_cast<int>(f) : 0;
 }
 
+/// Surface area of a non-empty box, as Box3::area computes it.
+float area_of(const SseBox& b) {
+  alignas(16) float e[4];
+  _mm_store_ps(e, _mm_sub_ps(b.hi, b.lo));
+  return 2.0f * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]);
+}
+
 /// Adds prims[begin, end) to `bins` along every usable axis.
 void bin_prims(const HugePageVector<PrimRef>& prims, uint32_t begin, uint32_t end, const Box3& centroids,
                const std::array<float, 3>& scale, const std::array<bool, 3>& usable, Bins& bins) {
+  // bin_of for three axes at once, with the same operations (so the partition, which uses bin_of, agrees):
+  // min(f, 31) also maps NaN to 31, max(., 0) maps negatives to 0, then truncation.
+  const __m128 lo = _mm_setr_ps(centroids.lo.x, centroids.lo.y, centroids.lo.z, 0.0f);
+  const __m128 scales = _mm_setr_ps(scale[0], scale[1], scale[2], 0.0f);
+  const __m128 last_bin = _mm_set1_ps(static_cast<float>(kBinCount - 1));
   for (uint32_t i = begin; i < end; ++i) {
     const PrimRef& p = prims[i];
+    const __m128 f = _mm_mul_ps(_mm_sub_ps(p.centroid(), lo), scales);
+    alignas(16) int32_t bin[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(bin),
+                    _mm_cvttps_epi32(_mm_max_ps(_mm_min_ps(f, last_bin), _mm_setzero_ps())));
     for (int axis = 0; axis < 3; ++axis) {
       if (!usable[axis]) continue;
-      Bin& bin = bins[axis][bin_of(p.centroid[axis], centroids.lo[axis], scale[axis])];
-      bin.box.expand(p.box);
-      ++bin.count;
+      Bin& b = bins[axis][bin[axis]];
+      b.box.expand(p.lo, p.hi);
+      ++b.count;
     }
   }
 }
@@ -136,21 +182,21 @@ Split find_sah_split(const HugePageVector<PrimRef>& prims, uint32_t begin, uint3
     // right_cost[k]: area * count of bins k..end, the right side of a split before bin k.
     std::array<float, kBinCount> right_cost{};
     std::array<uint32_t, kBinCount> right_count{};
-    Box3 right;
+    SseBox right;
     uint32_t count = 0;
     for (int k = kBinCount - 1; k > 0; --k) {
       right.expand(bins[axis][k].box);
       count += bins[axis][k].count;
-      right_cost[k] = right.area() * group_cost(count);
+      right_cost[k] = area_of(right) * group_cost(count);
       right_count[k] = count;
     }
-    Box3 left;
+    SseBox left;
     count = 0;
     for (int k = 1; k < kBinCount; ++k) {
       left.expand(bins[axis][k - 1].box);
       count += bins[axis][k - 1].count;
       if (count == 0 || right_count[k] == 0) continue;
-      const float cost = left.area() * group_cost(count) + right_cost[k];
+      const float cost = area_of(left) * group_cost(count) + right_cost[k];
       if (cost < best.cost) best = Split{axis, k, cost};  // NaN or infinite costs (overflowing boxes) never win
     }
   }
@@ -165,7 +211,7 @@ uint32_t median_split(HugePageVector<PrimRef>& prims, uint32_t begin, uint32_t e
   if (extent.z > extent[axis]) axis = 2;
   const uint32_t mid = begin + (end - begin) / 2;
   std::nth_element(prims.begin() + begin, prims.begin() + mid, prims.begin() + end,
-                   [axis](const PrimRef& a, const PrimRef& b) { return a.centroid[axis] < b.centroid[axis]; });
+                   [axis](const PrimRef& a, const PrimRef& b) { return a.centroid(axis) < b.centroid(axis); });
   return mid;
 }
 
@@ -173,30 +219,34 @@ uint32_t median_split(HugePageVector<PrimRef>& prims, uint32_t begin, uint32_t e
 /// pushed on `tasks`.
 void build_node(HugePageVector<PrimRef>& prims, HugePageVector<BvhNode>& nodes, const BuildTask& task,
                 std::vector<BuildTask>& tasks) {
-  Box3 box, centroids;
-  auto bound = [&](uint32_t b, uint32_t e, Box3& slice_box, Box3& slice_centroids) {
+  SseBox sse_box, sse_centroids;
+  auto bound = [&](uint32_t b, uint32_t e, SseBox& slice_box, SseBox& slice_centroids) {
     for (uint32_t i = b; i < e; ++i) {
-      slice_box.expand(prims[i].box);
-      slice_centroids.expand(prims[i].centroid);
+      slice_box.expand(prims[i].lo, prims[i].hi);
+      const __m128 c = prims[i].centroid();
+      slice_centroids.expand(c, c);
     }
   };
   if (const unsigned slices = slice_count(task.end - task.begin); slices == 1) {
-    bound(task.begin, task.end, box, centroids);
+    bound(task.begin, task.end, sse_box, sse_centroids);
   } else {
-    std::vector<std::pair<Box3, Box3>> slice_bounds(slices);
+    std::vector<std::pair<SseBox, SseBox>> slice_bounds(slices);
     for_each_slice(task.begin, task.end, slices, [&](unsigned k, uint32_t b, uint32_t e) {
       bound(b, e, slice_bounds[k].first, slice_bounds[k].second);
     });
     for (const auto& [slice_box, slice_centroids] : slice_bounds) {
-      box.expand(slice_box);
-      centroids.expand(slice_centroids);
+      sse_box.expand(slice_box);
+      sse_centroids.expand(slice_centroids);
     }
   }
+  const Box3 box = sse_box.box(), centroids = sse_centroids.box();
   const uint32_t count = task.end - task.begin;
 
   bool split = false;
   uint32_t mid = 0;
-  if (count > 1) {
+  // A leaf of at most kBvhWidth triangles is one group test; no split can cost less (it adds a traversal step and
+  // a second group), so such nodes skip the SAH: most nodes near the leaves are this small.
+  if (count > kBvhWidth) {
     if (task.depth < kSahDepthLimit) {
       const Split s = find_sah_split(prims, task.begin, task.end, centroids);
       const float area = box.area();
@@ -207,7 +257,7 @@ void build_node(HugePageVector<PrimRef>& prims, HugePageVector<BvhNode>& nodes, 
         const float lo = centroids.lo[axis];
         const float scale = static_cast<float>(kBinCount) / (centroids.hi[axis] - lo);
         const auto it = std::partition(prims.begin() + task.begin, prims.begin() + task.end,
-                                       [&](const PrimRef& p) { return bin_of(p.centroid[axis], lo, scale) < s.bin; });
+                                       [&](const PrimRef& p) { return bin_of(p.centroid(axis), lo, scale) < s.bin; });
         mid = static_cast<uint32_t>(it - prims.begin());
         // The bin counts promise two non-empty sides; should rounding ever disagree, fall back to the median.
         split = mid != task.begin && mid != task.end;
@@ -266,17 +316,17 @@ Bvh build_bvh(const std::vector<Vec3>& corners) {
     const BvhTriangle tri = make_bvh_triangle(a, b, c, static_cast<uint32_t>(i));
     // Edges that overflow could never be hit (non-finite determinant) and would give infinite boxes.
     if (!is_finite(tri.e1) || !is_finite(tri.e2)) continue;
-    PrimRef p;
     // Hits are clamped into bvh_triangle_box, so node boxes must contain it exactly; the input vertices too, which
     // a zero-area triangle's box (a point at v0) does not.
-    p.box = bvh_triangle_box(tri);
-    p.box.expand(a);
-    p.box.expand(b);
-    p.box.expand(c);
-    // Halving before adding cannot overflow, unlike (lo + hi) / 2 near the float range limits.
-    p.centroid = 0.5f * p.box.lo + 0.5f * p.box.hi;
-    p.index = static_cast<uint32_t>(i);
-    prims.push_back(p);
+    Box3 box = bvh_triangle_box(tri);
+    box.expand(a);
+    box.expand(b);
+    box.expand(c);
+    const auto index = static_cast<uint32_t>(i);
+    float index_bits;
+    std::memcpy(&index_bits, &index, sizeof index_bits);
+    prims.push_back(PrimRef{_mm_setr_ps(box.lo.x, box.lo.y, box.lo.z, index_bits),
+                            _mm_setr_ps(box.hi.x, box.hi.y, box.hi.z, 0.0f)});
   }
   if (prims.empty()) return bvh;
 
@@ -332,9 +382,11 @@ Bvh build_bvh(const std::vector<Vec3>& corners) {
   }
 
   bvh.triangles.reserve(prims.size());
-  for (const PrimRef& p : prims)
-    bvh.triangles.push_back(make_bvh_triangle(corners[3 * size_t{p.index}], corners[3 * size_t{p.index} + 1],
-                                              corners[3 * size_t{p.index} + 2], p.index));
+  for (const PrimRef& p : prims) {
+    const size_t i = p.index();
+    bvh.triangles.push_back(
+        make_bvh_triangle(corners[3 * i], corners[3 * i + 1], corners[3 * i + 2], static_cast<uint32_t>(i)));
+  }
   build_wide_bvh(bvh);
   return bvh;
 }
