@@ -65,6 +65,8 @@ void write_gl_screenshot(const AppOptions& options, const Film& film, const Trac
     panel.paused = true;
     panel.stats.frames = film.frames;
     panel.stats.seconds = figures.seconds;
+    // Headless frames are not timed one by one: the panel shows their mean.
+    panel.stats.last_frame_seconds = film.frames > 0 ? figures.seconds / static_cast<double>(film.frames) : 0.0;
     panel.stats.rays = figures.rays;
     panel.stats.l2_seconds = figures.l2_seconds;
     panel.stats.l2_bounce_hits = figures.bounce_hits;

@@ -58,9 +58,10 @@ void passes_section(PanelModel& m) {
     ImGui::TextUnformatted(kLabels[p]);
     ImGui::PopID();
   }
-  if (ImGui::Button("Report (Le 1, L1 0.6, L2 0.4)")) v.weights = kReportWeights;
-  ImGui::SameLine();
-  if (ImGui::Button("Physical (all 1)")) v.weights = {1.0f, 1.0f, 1.0f, 1.0f};
+  // One preset per line: side by side they do not fit the panel's width.
+  const float full_width = ImGui::GetContentRegionAvail().x;
+  if (ImGui::Button("Report (Le 1, L1 0.6, L2 0.4)", ImVec2(full_width, 0.0f))) v.weights = kReportWeights;
+  if (ImGui::Button("Physical (all 1)", ImVec2(full_width, 0.0f))) v.weights = {1.0f, 1.0f, 1.0f, 1.0f};
 }
 
 void sampling_section(ViewState& v, PanelActions& actions) {
@@ -73,7 +74,8 @@ void sampling_section(ViewState& v, PanelActions& actions) {
   ImGui::SliderFloat("Recompute ratio", &r.recompute_ratio, 0.0f, 1.0f, "%.3f");
   ImGui::Checkbox("Reuse diffuse L1 only", &r.reuse_diffuse_only);
   ImGui::SliderInt("AO rays", &r.ao_rays, 0, 64);
-  ImGui::InputFloat("AO radius (0: auto)", &r.ao_radius, 0.0f, 0.0f, "%.4g");
+  ImGui::InputFloat("AO radius", &r.ao_radius, 0.0f, 0.0f, "%.4g");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("world units; 0: a tenth of the scene's bounding-box diagonal");
   if (r.ao_radius < 0.0f) r.ao_radius = 0.0f;
   if (ImGui::Checkbox("Smooth normals", &v.smooth_normals)) actions.smooth_normals_changed = true;
   int seed = static_cast<int>(r.seed & 0x7fffffff);
