@@ -2,8 +2,10 @@
 // that alters the estimate, shows previews first, and every snapshot it publishes is a whole, current frame.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <fstream>
+#include <mutex>
 #include <random>
 #include <thread>
 
@@ -153,9 +155,12 @@ struct SnapshotChecker {
   ProgressiveTracer& tracer;
   std::atomic<bool> done{false};
   std::atomic<int> scene_epoch{0}, current_scene{0};
-  std::atomic<int> checked{0};
+  std::atomic<int> checked{0};   ///< snapshots taken
+  std::atomic<int> verified{0};  ///< of those, snapshots certainly of the current scene, checked value by value
+  std::mutex swap_gate;  ///< held by a checkpoint so that a loader thread cannot restart the tracer endlessly
 
   void swap_scene(int index, std::shared_ptr<const TracedScene> scene) {
+    const std::lock_guard<std::mutex> gate(swap_gate);
     ++scene_epoch;
     current_scene = index;
     tracer.set_scene(std::move(scene));
@@ -171,8 +176,10 @@ struct SnapshotChecker {
       if (tracer.take_snapshot(snapshot)) {
         // The snapshot is of the current accumulation or newer, never of one already replaced.
         EXPECT_GE(snapshot.generation, generation_before);
-        if (snapshot.generation == generation_before && epoch_before % 2 == 0 && scene_epoch.load() == epoch_before)
+        if (snapshot.generation == generation_before && epoch_before % 2 == 0 && scene_epoch.load() == epoch_before) {
           expect_whole_frame(snapshot, static_cast<float>(scene + 1));
+          ++verified;
+        }
         ++checked;
       }
       std::this_thread::yield();
@@ -180,13 +187,39 @@ struct SnapshotChecker {
   }
 };
 
-/// Leaves the tracer running normally after a storm of changes: it must still make progress (no deadlock).
-void expect_progress_after_the_storm(ProgressiveTracer& tracer, RenderSettings settings) {
+/// Waits until `counter` exceeds `target`, up to a deadline far beyond any healthy run.
+bool wait_for_count(const std::atomic<int>& counter, int target, double timeout_seconds = 60.0) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_seconds);
+  while (counter.load() <= target) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return true;
+}
+
+/// A checkpoint inside the storm: lets the tracer run (unpaused, no frame limit, a non-empty image) until the display
+/// thread has taken one more snapshot. Without it, a loaded machine can starve the display thread through the whole
+/// storm, and the test would check nothing; with it, every run checks snapshots taken between changes. Scene swaps
+/// wait meanwhile: a loader thread that swaps faster than a frame completes restarts the tracer before any frame.
+void let_the_display_take_a_snapshot(ProgressiveTracer& tracer, SnapshotChecker& checker, RenderSettings& settings) {
+  const std::lock_guard<std::mutex> no_swaps(checker.swap_gate);
+  settings.width = std::max(settings.width, 1);
+  settings.height = std::max(settings.height, 1);
+  tracer.set_settings(settings);
+  tracer.set_frame_limit(0);
+  tracer.set_paused(false);
+  EXPECT_TRUE(wait_for_count(checker.checked, checker.checked.load())) << "the display got no snapshot";
+}
+
+/// Leaves the tracer running normally after a storm of changes: it must still make progress (no deadlock), and the
+/// display must verify a snapshot of the scene that is current once the changes stop.
+void expect_progress_after_the_storm(ProgressiveTracer& tracer, SnapshotChecker& checker, RenderSettings settings) {
   settings.width = settings.height = 16;
   tracer.set_settings(settings);
   tracer.set_frame_limit(0);
   tracer.set_paused(false);
   EXPECT_TRUE(tracer.wait_for_frames(3, 60.0));
+  EXPECT_TRUE(wait_for_count(checker.verified, checker.verified.load())) << "no snapshot was verified";
 }
 
 TEST(ProgressiveTracer, StressEverySnapshotIsWholeAndCurrent) {
@@ -207,6 +240,7 @@ TEST(ProgressiveTracer, StressEverySnapshotIsWholeAndCurrent) {
 
   std::mt19937 random(7);
   for (int change = 0; change < 3000; ++change) {
+    if (change % 300 == 299) let_the_display_take_a_snapshot(tracer, checker, settings);
     switch (random() % 8) {
       case 0:
         camera.eye.x = std::uniform_real_distribution<float>(-0.5f, 0.5f)(random);
@@ -239,10 +273,10 @@ TEST(ProgressiveTracer, StressEverySnapshotIsWholeAndCurrent) {
         break;
     }
   }
-  expect_progress_after_the_storm(tracer, settings);
+  expect_progress_after_the_storm(tracer, checker, settings);
   checker.done = true;
   display.join();
-  EXPECT_GT(checker.checked.load(), 10);
+  EXPECT_GE(checker.checked.load(), 10) << "one snapshot per checkpoint at least";
 }
 
 /// Writes `scene` as an OBJ file and its materials as an MTL file beside it (Kd and Ke only).
@@ -295,6 +329,7 @@ TEST(ProgressiveTracer, StressSettingsChangesWhileAnotherThreadReloadsScenes) {
   std::mt19937 random(7);
   auto pick = [&](int n) { return static_cast<int>(random() % static_cast<unsigned>(n)); };
   for (int change = 0; change < 3000; ++change) {
+    if (change % 300 == 299) let_the_display_take_a_snapshot(tracer, checker, settings);
     switch (pick(12)) {
       case 0:
         camera.eye = Vec3(std::uniform_real_distribution<float>(-0.5f, 0.5f)(random), 0.0f, 0.5f);
@@ -345,13 +380,13 @@ TEST(ProgressiveTracer, StressSettingsChangesWhileAnotherThreadReloadsScenes) {
         break;
     }
   }
+  EXPECT_TRUE(wait_for_count(reloads, 10)) << "the loader thread made no progress";  // reloads overlap changes
   changes_done = true;
   loader.join();
-  expect_progress_after_the_storm(tracer, settings);
+  expect_progress_after_the_storm(tracer, checker, settings);
   checker.done = true;
   display.join();
-  EXPECT_GT(reloads.load(), 10);
-  EXPECT_GT(checker.checked.load(), 10);
+  EXPECT_GE(checker.checked.load(), 10) << "one snapshot per checkpoint at least";
 }
 
 }  // namespace
