@@ -94,15 +94,17 @@ class Window : public ::testing::Test {
 
   void xdotool(const std::string& arguments) const { run_command("xdotool " + arguments); }
 
-  void drag(int x0, int y0, int x1, int y1) const {
-    xdotool("mousemove --window " + window_ + " " + std::to_string(x0) + " " + std::to_string(y0) + " mousedown 1");
+  /// Presses the left button at (x0, y0) and moves to (x1, y1) in steps, keeping it down. `before` is xdotool
+  /// input sent in the same command as the press, so that both reach the viewer within one of its frames.
+  void press_and_drag(int x0, int y0, int x1, int y1, const std::string& before = "") const {
+    xdotool(before + "mousemove --window " + window_ + " " + std::to_string(x0) + " " + std::to_string(y0) +
+            " mousedown 1");
     for (int step = 1; step <= 8; ++step) {
       std::this_thread::sleep_for(std::chrono::milliseconds(40));
       xdotool("mousemove --window " + window_ + " " + std::to_string(x0 + (x1 - x0) * step / 8) + " " +
               std::to_string(y0 + (y1 - y0) * step / 8));
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(250));  // the viewer must see the button still down
-    xdotool("mouseup 1");
   }
 
   std::string dir_, state_path_, window_;
@@ -130,22 +132,26 @@ TEST_F(Window, SyntheticInputDrivesThePanelAndTheCamera) {
   generation = state()["generation"].get<uint64_t>();
   const float weight = state()["view"]["weights"]["l1"].get<float>();
   const auto [wx, wy] = centre_of("weight-l1");
-  drag(wx, wy, wx + 40, wy);
+  press_and_drag(wx, wy, wx + 40, wy);
   ASSERT_TRUE(wait_for([&](const json& s) { return s["view"]["weights"]["l1"].get<float>() > weight + 0.05f; }, 10.0))
       << "dragging the L1 weight slider did not raise the weight";
   EXPECT_EQ(state()["generation"].get<uint64_t>(), generation) << "a weight change must not restart the tracer";
 
-  // A camera drag in the image, right of the panel: the eye moves and the accumulation restarts.
+  // A camera drag in the image, right of the panel, pressed in the same instant as the slider is let go (as a
+  // quick hand does): the slider must let go, and the eye moves and the accumulation restarts.
+  const float dragged_weight = state()["view"]["weights"]["l1"].get<float>();
   const std::vector<float> eye = state()["view"]["camera"]["eye"].get<std::vector<float>>();
   const int panel_right = static_cast<int>(state()["widgets"]["panel"][2].get<float>());
-  drag(panel_right + 60, 300, panel_right + 120, 320);
+  press_and_drag(panel_right + 60, 300, panel_right + 120, 320, "mouseup 1 ");
+  xdotool("mouseup 1");
   ASSERT_TRUE(wait_for(
       [&](const json& s) {
         return s["view"]["camera"]["eye"].get<std::vector<float>>() != eye &&
                s["generation"].get<uint64_t>() > generation;
       },
       10.0))
-      << "dragging in the image did not move the camera";
+      << "dragging in the image did not move the camera; the viewer reports " << state().dump();
+  EXPECT_EQ(state()["view"]["weights"]["l1"].get<float>(), dragged_weight) << "the camera drag moved the slider";
 
   // Resizing re-renders at the new size.
   xdotool("windowsize " + window_ + " 320 240");

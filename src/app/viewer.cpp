@@ -24,6 +24,7 @@
 #include "render/image_output.h"
 #include "render/progressive_tracer.h"
 #include "ui/imgui_gl.h"
+#include "ui/mouse_buttons.h"
 #include "ui/panel.h"
 
 namespace lueur {
@@ -39,6 +40,7 @@ double seconds_between(Clock::time_point a, Clock::time_point b) {
 struct InputEvents {
   double scroll = 0.0;
   std::vector<std::string> dropped;
+  MouseButtons buttons;  ///< what ImGui and the camera see, one change per button per frame
 };
 
 InputEvents& events_of(GLFWwindow* window) { return *static_cast<InputEvents*>(glfwGetWindowUserPointer(window)); }
@@ -82,6 +84,7 @@ class Viewer {
 
       imgui_opengl_new_frame();
       ImGui_ImplGlfw_NewFrame();
+      deliver_mouse_buttons();
       ImGui::NewFrame();
       panel_.stats = tracer_.stats();
       panel_.status = loading_ ? loading_->status() : std::string();
@@ -144,6 +147,14 @@ class Viewer {
   }
 
   // ---- input ------------------------------------------------------------------------------------------------
+  /// Replaces the buttons ImGui's GLFW back-end polled with the queued ones (see ui/mouse_buttons.h).
+  void deliver_mouse_buttons() {
+    MouseButtons& buttons = events_of(window_).buttons;
+    buttons.next_frame();
+    ImGuiIO& io = ImGui::GetIO();
+    for (int b = 0; b < MouseButtons::kCount; ++b) io.MouseDown[b] = buttons.down[static_cast<size_t>(b)];
+  }
+
   void handle_input() {
     InputEvents& events = events_of(window_);
     for (const std::string& path : events.dropped) {
@@ -168,8 +179,8 @@ class Viewer {
     last_cursor_y_ = y;
 
     // A drag belongs to the view only when it started outside the panel.
-    const bool left = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-    const bool middle = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+    const bool left = events.buttons.down[GLFW_MOUSE_BUTTON_LEFT];
+    const bool middle = events.buttons.down[GLFW_MOUSE_BUTTON_MIDDLE];
     if (!left && !middle)
       dragging_ = false;
     else if (!dragging_ && !io.WantCaptureMouse)
@@ -427,6 +438,9 @@ int run_viewer(const AppOptions& options) {
   glfwSetWindowUserPointer(window, &events);
   // Installed before ImGui's, which chains to them.
   glfwSetScrollCallback(window, [](GLFWwindow* w, double, double y) { events_of(w).scroll += y; });
+  glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
+    events_of(w).buttons.record(button, action == GLFW_PRESS);
+  });
   glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
     for (int i = 0; i < count; ++i) events_of(w).dropped.emplace_back(paths[i]);
   });
