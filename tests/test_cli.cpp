@@ -70,6 +70,17 @@ TEST_F(Cli, RefusesBadOptions) {
   expect_refused("--camera '1 2 3'", "--camera");
   expect_refused("--up '0 0 0'", "--up");
   expect_refused("--bogus", "bogus");
+  // NaN passes any range check written as comparisons, so each real-valued option must refuse it by name.
+  for (const char* option : {"--ao-radius", "--blinn-k", "--recompute-ratio", "--exposure"}) {
+    expect_refused(std::string(option) + " nan", std::string(option) + ": 'nan' is not a finite number");
+    expect_refused(std::string(option) + " inf", std::string(option) + ": 'inf' is not a finite number");
+    expect_refused(std::string(option) + " 0.5x", std::string(option) + ": '0.5x' is not a finite number");
+  }
+  expect_refused("--ao-radius 0", "--ao-radius: '0' is outside (0, ");
+  expect_refused("--ao-radius -2", "--ao-radius: '-2' is outside (0, ");
+  expect_refused("--recompute-ratio 17", "--recompute-ratio: '17' is outside [0, 16]");
+  expect_refused("--seed -1", "--seed: '-1' is not a non-negative integer");
+  expect_refused("--frame-limit -1", "--frame-limit: '-1' is not a non-negative integer");
   const test::CommandResult r = test::run_lueur("--headless");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("--out"), std::string::npos);

@@ -44,6 +44,41 @@ std::vector<float> parse_floats(const std::string& option, const std::string& te
   return values;
 }
 
+std::string number_text(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+/// A finite real number in [lo, hi] (in (0, hi] when `exclusive_lo`). CLI11's Range lets NaN through, since every
+/// comparison with it is false, and prints an infinite bound as its 300 digits.
+CLI::Validator finite_in(double lo, double hi, bool exclusive_lo = false) {
+  const std::string range = (exclusive_lo ? "(" : "[") + number_text(lo) + ", " + number_text(hi) + "]";
+  return CLI::Validator(
+      [lo, hi, exclusive_lo, range](std::string& text) -> std::string {
+        size_t used = 0;
+        double v = 0.0;
+        try {
+          v = std::stod(text, &used);
+        } catch (const std::logic_error&) {
+          used = 0;
+        }
+        if (used == 0 || used != text.size() || !std::isfinite(v)) return "'" + text + "' is not a finite number";
+        if (v < lo || v > hi || (exclusive_lo && v == lo)) return "'" + text + "' is outside " + range;
+        return {};
+      },
+      "NUMBER in " + range);
+}
+
+/// A non-negative decimal integer (CLI11 wraps "-1" into an unsigned option's largest value).
+const CLI::Validator kNonNegativeInteger(
+    [](std::string& text) -> std::string {
+      if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos)
+        return "'" + text + "' is not a non-negative integer";
+      return {};
+    },
+    "INTEGER >= 0");
+
 template <typename Enum, size_t N>
 Enum parse_enum(const std::string& option, const std::array<std::string_view, N>& names, const std::string& text) {
   if (const auto value = enum_from_name<Enum>(names, text)) return *value;
@@ -145,26 +180,26 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv) {
   app.add_option("--l1-rays", o.render.l1_rays, "shadow rays per pixel per frame (default 16)")
       ->check(CLI::Range(0, 4096));
   app.add_option("--blinn-k", o.render.blinn_k, "Lambert share K of the Blinn-Phong mix (default 0.7)")
-      ->check(CLI::Range(0.0f, 1.0f));
+      ->check(finite_in(0.0, 1.0));
   app.add_option("--l2-rays", o.render.l2_rays, "L2 bounce rays per pixel per frame (default 16)")
       ->check(CLI::Range(0, 4096));
   app.add_option("--reuse", reuse, "L1 reuse for L2: off|frame|average (default frame)");
   app.add_option("--recompute-ratio", o.render.recompute_ratio,
                  "share of the L1 rays used to recompute L1 where it cannot be reused (default 0.125)")
-      ->check(CLI::Range(0.0f, 16.0f));
+      ->check(finite_in(0.0, 16.0));
   app.add_flag("--reuse-diffuse-only", o.render.reuse_diffuse_only,
                "reuse only the view-independent part of L1 (no bias on glossy surfaces)");
   app.add_option("--ao-rays", o.render.ao_rays, "AO rays per pixel per frame (default 16)")->check(CLI::Range(0, 4096));
   app.add_option("--ao-radius", o.render.ao_radius, "AO radius in world units (default: scene diagonal / 10)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_in(0.0, 1e30, true));
   app.add_option("--view", view,
                  "what the PNG/PFM shows: combined (default), a pass (le|l1|l2|ao) or l2-reused|l2-recomputed|"
                  "reuse-fraction|l1-diffuse");
   app.add_option("--smooth-normals", smooth, "on|off: compute smooth normals for files without them (default on)");
-  app.add_option("--seed", o.render.seed, "random seed (default 0)");
+  app.add_option("--seed", o.render.seed, "random seed (default 0)")->check(kNonNegativeInteger);
   app.add_option("--accel", accel, "acceleration structure: lueur|embree (default lueur)");
   app.add_option("--threads", o.threads, "worker threads (default: all cores)")->check(CLI::Range(0, 1024));
-  app.add_option("--exposure", o.display.exposure, "exposure in stops (default 0)")->check(CLI::Range(-30.0f, 30.0f));
+  app.add_option("--exposure", o.display.exposure, "exposure in stops (default 0)")->check(finite_in(-30.0, 30.0));
   app.add_option("--tonemap", tonemap, "none|reinhard|aces (default none)");
   app.add_option("--export-default-scene", o.export_default_scene,
                  "write the embedded default scene as OBJ + MTL to FILE.obj and exit");
@@ -174,7 +209,8 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv) {
   app.add_flag("--ui", o.ui, "draw the control panel into the headless screenshot (needs --gl)");
   app.add_option("--view-file", o.view_file,
                  "a view saved by the window (camera and all settings); options given as well override it");
-  app.add_option("--frame-limit", o.frame_limit, "window: stop accumulating after this many frames (0: never)");
+  app.add_option("--frame-limit", o.frame_limit, "window: stop accumulating after this many frames (0: never)")
+      ->check(kNonNegativeInteger);
   app.add_option("--state-file", o.state_file, "window: keep the current view and statistics in this JSON file")
       ->group("");  // for tests that drive the window
 
@@ -255,8 +291,7 @@ std::string describe_options(const AppOptions& o) {
   if (o.render.ao_radius > 0.0f) s << " --ao-radius " << o.render.ao_radius;
   if (o.view) s << " --view " << enum_name(kLayerNames, *o.view);
   if (o.accel != AccelKind::kLueur) s << " --accel " << enum_name(kAccelKindNames, o.accel);
-  s
-    << " --blinn-k " << o.render.blinn_k << " --smooth-normals " << (o.smooth_normals ? "on" : "off") << " --seed "
+  s << " --blinn-k " << o.render.blinn_k << " --smooth-normals " << (o.smooth_normals ? "on" : "off") << " --seed "
     << o.render.seed << " --exposure " << o.display.exposure << " --tonemap "
     << enum_name(kToneMapNames, o.display.tonemap);
   if (o.camera)

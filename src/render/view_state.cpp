@@ -37,8 +37,8 @@ struct Reader {
     if (!value.is_number()) throw ViewFileError("view file: '" + field + "' is not a number");
     const double v = value.get<double>();
     if (!std::isfinite(v) || v < lo || v > hi)
-      throw ViewFileError("view file: '" + field + "' = " + value.dump() + " is outside [" + std::to_string(lo) + ", " +
-                          std::to_string(hi) + "]");
+      throw ViewFileError("view file: '" + field + "' = " + value.dump() + " is outside [" + json(lo).dump() + ", " +
+                          json(hi).dump() + "]");
     return static_cast<float>(v);
   }
   void read_float(const char* key, float& out, float lo, float hi) const {
