@@ -84,8 +84,12 @@ struct PrimRef {
   __m128 lo, hi;
   uint32_t index() const { return static_cast<uint32_t>(_mm_extract_ps(lo, 3)); }
   __m128 centroid() const {
+    // The index's bits read as a float are a denormal for any index below 2^23; Intel cores take a microcode
+    // assist (over 100 cycles) for every multiply that reads one, which made the binning 4x slower there. The
+    // fourth lane is cleared first: bit operations take no assist.
+    const __m128 xyz = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
     const __m128 half = _mm_set1_ps(0.5f);
-    return _mm_add_ps(_mm_mul_ps(half, lo), _mm_mul_ps(half, hi));
+    return _mm_add_ps(_mm_mul_ps(half, _mm_and_ps(lo, xyz)), _mm_mul_ps(half, hi));
   }
   float centroid(int axis) const {
     alignas(16) float l[4], h[4];
