@@ -2,7 +2,9 @@
 #include <CLI/CLI.hpp>
 #include <cctype>
 #include <cstdio>
+#include <optional>
 #include <sstream>
+#include <type_traits>
 #include <vector>
 
 #include "accel/embree_backend.h"
@@ -19,6 +21,24 @@ std::vector<std::string> split(const std::string& text, char separator) {
   return parts;
 }
 
+/// The number `text` holds, if it is one finite float or double and nothing else (std::stof / std::stod, so that a
+/// float that overflows or underflows is refused, as before).
+template <typename Real>
+std::optional<Real> parse_finite(const std::string& text) {
+  size_t used = 0;
+  Real v{};
+  try {
+    if constexpr (std::is_same_v<Real, float>)
+      v = std::stof(text, &used);
+    else
+      v = std::stod(text, &used);
+  } catch (const std::logic_error&) {
+    return std::nullopt;
+  }
+  if (used != text.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
 /// Reads exactly `count` finite floats separated by spaces or commas.
 std::vector<float> parse_floats(const std::string& option, const std::string& text, size_t count) {
   std::string cleaned = text;
@@ -28,16 +48,9 @@ std::vector<float> parse_floats(const std::string& option, const std::string& te
   std::vector<float> values;
   std::string token;
   while (in >> token) {
-    size_t used = 0;
-    float v = 0.0f;
-    try {
-      v = std::stof(token, &used);
-    } catch (const std::logic_error&) {
-      used = 0;
-    }
-    if (used != token.size() || !std::isfinite(v))
-      throw UsageError(option + ": '" + token + "' is not a finite number");
-    values.push_back(v);
+    const std::optional<float> v = parse_finite<float>(token);
+    if (!v) throw UsageError(option + ": '" + token + "' is not a finite number");
+    values.push_back(*v);
   }
   if (values.size() != count)
     throw UsageError(option + ": expected " + std::to_string(count) + " numbers, got " + std::to_string(values.size()));
@@ -56,15 +69,9 @@ CLI::Validator finite_in(double lo, double hi, bool exclusive_lo = false) {
   const std::string range = (exclusive_lo ? "(" : "[") + number_text(lo) + ", " + number_text(hi) + "]";
   return CLI::Validator(
       [lo, hi, exclusive_lo, range](std::string& text) -> std::string {
-        size_t used = 0;
-        double v = 0.0;
-        try {
-          v = std::stod(text, &used);
-        } catch (const std::logic_error&) {
-          used = 0;
-        }
-        if (used == 0 || used != text.size() || !std::isfinite(v)) return "'" + text + "' is not a finite number";
-        if (v < lo || v > hi || (exclusive_lo && v == lo)) return "'" + text + "' is outside " + range;
+        const std::optional<double> v = parse_finite<double>(text);
+        if (!v) return "'" + text + "' is not a finite number";
+        if (*v < lo || *v > hi || (exclusive_lo && *v == lo)) return "'" + text + "' is outside " + range;
         return {};
       },
       "NUMBER in " + range);
