@@ -107,10 +107,11 @@ Hit intersect_closest(const Bvh& bvh, const Ray& ray);
 bool intersect_any(const Bvh& bvh, const Ray& ray);
 
 /// Ray-triangle test shared by the BVH and the brute-force reference; on a hit inside (tmin, tmax) writes t, u, v.
-/// Möller–Trumbore, where a zero or non-finite determinant is never a hit; its t is then clamped to the span of the
-/// ray inside bvh_triangle_box (no span: no hit). Near-degenerate triangles and grazing rays can give a Möller–
-/// Trumbore t far from the triangle; the clamp keeps every hit inside the node boxes above it, so the BVH queries
-/// report exactly what a loop over all triangles with this function reports, bit for bit.
+/// Möller–Trumbore, where a determinant below the smallest normal float (zero included) or non-finite is never a
+/// hit, and whose t must lie inside (tmin, tmax); that t is then clamped to the span of the ray inside
+/// bvh_triangle_box (no span: no hit) and must still lie inside (tmin, tmax). Near-degenerate triangles and grazing
+/// rays can give a Möller–Trumbore t far from the triangle; the clamp keeps every hit inside the node boxes above
+/// it, so the BVH queries report exactly what a loop over all triangles with this function reports, bit for bit.
 bool intersect_triangle(const Ray& ray, const Vec3& v0, const Vec3& e1, const Vec3& e2, float& t, float& u, float& v);
 
 }  // namespace lueur

@@ -7,6 +7,7 @@
 
 #include <bit>
 #include <cstddef>
+#include <utility>
 
 #include "bvh/bvh.h"
 
@@ -34,40 +35,45 @@ inline float safe_inverse(float d) {
 
 inline Vec3 safe_inverse(const Vec3& d) { return Vec3(safe_inverse(d.x), safe_inverse(d.y), safe_inverse(d.z)); }
 
-/// Slab test: the span [entry, exit] of the ray's line inside the box, not yet limited to the ray's interval. Each
+/// The ray as the slab test sees it, computed once per query: the origin, the inverse direction, and that inverse
+/// scaled by kExitScale for the exit planes (folding the scale into the ray keeps a multiply off every box test).
+struct SlabRay {
+  Vec3 origin;
+  Vec3 inv_dir;
+  Vec3 inv_dir_exit;
+  explicit SlabRay(const Vec3& o, const Vec3& inv) : origin(o), inv_dir(inv), inv_dir_exit(inv * kExitScale) {}
+};
+
+/// The plane of a slab the ray crosses first: lo where the direction is positive (its inverse is never zero).
+inline float near_plane(float lo, float hi, float inv) { return inv < 0.0f ? hi : lo; }
+inline float far_plane(float lo, float hi, float inv) { return inv < 0.0f ? lo : hi; }
+
+/// Slab test: the span [entry, exit] of the ray's line inside the box, not yet limited to the ray's interval.
+/// Choosing each axis's near plane by the sign of the direction gives exactly min(t_lo, t_hi) (rounding is
+/// monotone), so the SIMD kernels, which choose the planes once per ray, compute the same values bit for bit. Each
 /// bound is monotone in the box, so a box inside another gets a span inside the other's: the BVH's exact agreement
-/// with the brute-force loop rests on the node test and the triangle clamp both using this function.
-inline void slab_span(const Vec3& lo, const Vec3& hi, const Vec3& origin, const Vec3& inv_dir, float& entry,
-                      float& exit) {
-  const float tx0 = (lo.x - origin.x) * inv_dir.x;
-  const float tx1 = (hi.x - origin.x) * inv_dir.x;
-  const float ty0 = (lo.y - origin.y) * inv_dir.y;
-  const float ty1 = (hi.y - origin.y) * inv_dir.y;
-  const float tz0 = (lo.z - origin.z) * inv_dir.z;
-  const float tz1 = (hi.z - origin.z) * inv_dir.z;
-  entry = max_f(max_f(min_f(tx0, tx1), min_f(ty0, ty1)), min_f(tz0, tz1));
-  exit = min_f(min_f(max_f(tx0, tx1), max_f(ty0, ty1)), max_f(tz0, tz1)) * kExitScale;
+/// with the brute-force loop rests on the node test and the triangle clamp both using this arithmetic.
+inline void slab_span(const Vec3& lo, const Vec3& hi, const SlabRay& r, float& entry, float& exit) {
+  const float tx0 = (near_plane(lo.x, hi.x, r.inv_dir.x) - r.origin.x) * r.inv_dir.x;
+  const float ty0 = (near_plane(lo.y, hi.y, r.inv_dir.y) - r.origin.y) * r.inv_dir.y;
+  const float tz0 = (near_plane(lo.z, hi.z, r.inv_dir.z) - r.origin.z) * r.inv_dir.z;
+  const float tx1 = (far_plane(lo.x, hi.x, r.inv_dir.x) - r.origin.x) * r.inv_dir_exit.x;
+  const float ty1 = (far_plane(lo.y, hi.y, r.inv_dir.y) - r.origin.y) * r.inv_dir_exit.y;
+  const float tz1 = (far_plane(lo.z, hi.z, r.inv_dir.z) - r.origin.z) * r.inv_dir_exit.z;
+  entry = max_f(max_f(tx0, ty0), tz0);
+  exit = min_f(min_f(tx1, ty1), tz1);
 }
 
 /// What every box test of one ray needs, computed once per query.
 struct RayData {
   Vec3 origin;
   Vec3 dir;
-  Vec3 inv_dir;
+  SlabRay slab;
   float tmin;
   float tmax;
   explicit RayData(const Ray& ray)
-      : origin(ray.origin), dir(ray.dir), inv_dir(safe_inverse(ray.dir)), tmin(ray.tmin), tmax(ray.tmax) {}
+      : origin(ray.origin), dir(ray.dir), slab(ray.origin, safe_inverse(ray.dir)), tmin(ray.tmin), tmax(ray.tmax) {}
 };
-
-/// True if the ray meets the node box at some t in [tmin, t_limit]; `entry` is the tmin-clamped entry distance.
-/// The limit is inclusive so that an equally distant triangle with a lower id is still found.
-inline bool hit_box(const BvhNode& node, const RayData& r, float t_limit, float& entry) {
-  float box_entry, box_exit;
-  slab_span(node.lo, node.hi, r.origin, r.inv_dir, box_entry, box_exit);
-  entry = max_f(box_entry, r.tmin);
-  return entry <= box_exit && entry <= t_limit;
-}
 
 inline Box3 triangle_box(const Vec3& v0, const Vec3& e1, const Vec3& e2) {
   const Vec3 v1 = v0 + e1;
@@ -81,21 +87,30 @@ inline Box3 triangle_box(const Vec3& v0, const Vec3& e1, const Vec3& e2) {
   return box;
 }
 
-/// Möller–Trumbore without the range test on t.
+// Determinants smaller than the smallest normal float (zero included: a ray parallel to the plane, or a triangle of
+// no area) are never a hit: their inverse could overflow.
+constexpr float kMinDeterminant = std::numeric_limits<float>::min();
+
+/// Möller–Trumbore without the range test on t. The inside test compares the undivided barycentric numerators
+/// with the determinant, its sign folded into them (an exact sign flip), so no division is made before the ray is
+/// known to cross the triangle.
 inline bool moller_trumbore(const Vec3& origin, const Vec3& dir, const Vec3& v0, const Vec3& e1, const Vec3& e2,
                             float& t, float& u, float& v) {
   const Vec3 p = glm::cross(dir, e2);
   const float det = glm::dot(e1, p);
-  // Exactly zero: the ray is parallel to the plane or the triangle has no area. Non-finite: overflowing edges.
-  if (det == 0.0f || !std::isfinite(det)) return false;
-  const float inv_det = 1.0f / det;
   const Vec3 s = origin - v0;
-  u = glm::dot(s, p) * inv_det;
-  // Written so that a NaN (inv_det overflowing on a denormal determinant) is rejected.
-  if (!(u >= 0.0f && u <= 1.0f)) return false;
+  const float u_num = glm::dot(s, p);
   const Vec3 q = glm::cross(s, e1);
-  v = glm::dot(dir, q) * inv_det;
-  if (!(v >= 0.0f && u + v <= 1.0f)) return false;
+  const float v_num = glm::dot(dir, q);
+  const float abs_det = std::fabs(det);
+  const float sign = det < 0.0f ? -1.0f : 1.0f;
+  const float u_signed = u_num * sign, v_signed = v_num * sign;
+  // Non-finite determinants come from overflowing edges; NaN numerators fail every comparison.
+  if (!(abs_det >= kMinDeterminant && abs_det < kInfinity)) return false;
+  if (!(u_signed >= 0.0f && v_signed >= 0.0f && u_signed + v_signed <= abs_det)) return false;
+  const float inv_det = 1.0f / det;
+  u = u_num * inv_det;
+  v = v_num * inv_det;
   t = glm::dot(e2, q) * inv_det;
   return true;
 }
@@ -103,22 +118,13 @@ inline bool moller_trumbore(const Vec3& origin, const Vec3& dir, const Vec3& v0,
 /// Moves a Möller–Trumbore t into the ray's span inside the triangle's box. Only runs on the rare candidate hits.
 /// The t of an ill-conditioned determinant (slivers, grazing rays) can land far from the triangle; the true hit
 /// lies inside the box, so the clamp only ever brings t closer to it.
-inline bool clamp_to_triangle_box(const Vec3& origin, const Vec3& inv_dir, const Vec3& v0, const Vec3& e1,
-                                  const Vec3& e2, float& t) {
+inline bool clamp_to_triangle_box(const SlabRay& ray, const Vec3& v0, const Vec3& e1, const Vec3& e2, float& t) {
   const Box3 box = triangle_box(v0, e1, e2);
   float entry, exit;
-  slab_span(box.lo, box.hi, origin, inv_dir, entry, exit);
+  slab_span(box.lo, box.hi, ray, entry, exit);
   if (!(entry <= exit)) return false;
   t = min_f(max_f(t, entry), exit);  // a NaN t becomes `entry`
   return true;
-}
-
-/// The whole shared test; the BVH passes its precomputed inverse direction, which is bit-identical to the one
-/// intersect_triangle computes.
-inline bool triangle_hit(const Vec3& origin, const Vec3& dir, const Vec3& inv_dir, const BvhTriangle& tri, float& t,
-                         float& u, float& v) {
-  return moller_trumbore(origin, dir, tri.v0, tri.e1, tri.e2, t, u, v) &&
-         clamp_to_triangle_box(origin, inv_dir, tri.v0, tri.e1, tri.e2, t);
 }
 
 // ---- the 4-wide kernels -----------------------------------------------------------------------------------------
@@ -126,9 +132,31 @@ inline bool triangle_hit(const Vec3& origin, const Vec3& dir, const Vec3& inv_di
 // their second operand on NaN, like min_f/max_f; no FMA is involved), so the BVH stays bit-identical to the
 // brute-force loop over intersect_triangle.
 
+/// Where in a wide node of `Width` children (lo[3][Width] then hi[3][Width]) the near and far planes of each axis
+/// lie for this ray: the lower bounds where the direction is positive.
+template <uint32_t Width>
+struct PlaneOffsets {
+  uint32_t near[3], far[3];
+  explicit PlaneOffsets(const Vec3& inv_dir) {
+    constexpr uint32_t kRow = Width * sizeof(float), kHi = 3 * kRow;
+    for (int axis = 0; axis < 3; ++axis) {
+      const bool negative = inv_dir[axis] < 0.0f;
+      near[axis] = static_cast<uint32_t>(axis) * kRow + (negative ? kHi : 0);
+      far[axis] = static_cast<uint32_t>(axis) * kRow + (negative ? 0 : kHi);
+    }
+  }
+};
+
+/// Row `offset` bytes into a node: one of its six planes for all children.
+template <typename Node>
+inline const float* plane_row(const Node& node, uint32_t offset) {
+  return reinterpret_cast<const float*>(reinterpret_cast<const char*>(&node) + offset);
+}
+
 /// The ray, broadcast to four lanes.
 struct RayLanes {
-  __m128 ox, oy, oz, dx, dy, dz, ix, iy, iz, tmin;
+  __m128 ox, oy, oz, dx, dy, dz, ix, iy, iz, ex, ey, ez, tmin, tmax;
+  PlaneOffsets<kBvhWidth> planes;
   explicit RayLanes(const RayData& r)
       : ox(_mm_set1_ps(r.origin.x)),
         oy(_mm_set1_ps(r.origin.y)),
@@ -136,31 +164,37 @@ struct RayLanes {
         dx(_mm_set1_ps(r.dir.x)),
         dy(_mm_set1_ps(r.dir.y)),
         dz(_mm_set1_ps(r.dir.z)),
-        ix(_mm_set1_ps(r.inv_dir.x)),
-        iy(_mm_set1_ps(r.inv_dir.y)),
-        iz(_mm_set1_ps(r.inv_dir.z)),
-        tmin(_mm_set1_ps(r.tmin)) {}
+        ix(_mm_set1_ps(r.slab.inv_dir.x)),
+        iy(_mm_set1_ps(r.slab.inv_dir.y)),
+        iz(_mm_set1_ps(r.slab.inv_dir.z)),
+        ex(_mm_set1_ps(r.slab.inv_dir_exit.x)),
+        ey(_mm_set1_ps(r.slab.inv_dir_exit.y)),
+        ez(_mm_set1_ps(r.slab.inv_dir_exit.z)),
+        tmin(_mm_set1_ps(r.tmin)),
+        tmax(_mm_set1_ps(r.tmax)),
+        planes(r.slab.inv_dir) {}
 };
 
-/// hit_box on the four children of a node: bit k of the result says whether child k may hold a hit no farther
-/// than t_limit; entry receives the tmin-clamped entry distances.
+/// slab_span on the four children of a node, limited to [tmin, t_limit]: bit k of the result says whether child k
+/// may hold a hit no farther than t_limit; entry receives the tmin-clamped entry distances. Empty slots have NaN
+/// planes: SSE max returns its second operand when either is NaN, so the NaN reaches `entry` and fails the compare.
 inline int hit_boxes(const BvhWideNode& node, const RayLanes& r, __m128 t_limit, __m128& entry) {
-  const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lo[0]), r.ox), r.ix);
-  const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.hi[0]), r.ox), r.ix);
-  const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lo[1]), r.oy), r.iy);
-  const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.hi[1]), r.oy), r.iy);
-  const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.lo[2]), r.oz), r.iz);
-  const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.hi[2]), r.oz), r.iz);
-  const __m128 box_entry = _mm_max_ps(_mm_max_ps(_mm_min_ps(tx0, tx1), _mm_min_ps(ty0, ty1)), _mm_min_ps(tz0, tz1));
-  const __m128 box_exit =
-      _mm_mul_ps(_mm_min_ps(_mm_min_ps(_mm_max_ps(tx0, tx1), _mm_max_ps(ty0, ty1)), _mm_max_ps(tz0, tz1)),
-                 _mm_set1_ps(kExitScale));
-  entry = _mm_max_ps(box_entry, r.tmin);
-  return _mm_movemask_ps(_mm_and_ps(_mm_cmple_ps(entry, box_exit), _mm_cmple_ps(entry, t_limit)));
+  const PlaneOffsets<kBvhWidth>& p = r.planes;
+  const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(plane_row(node, p.near[0])), r.ox), r.ix);
+  const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(plane_row(node, p.near[1])), r.oy), r.iy);
+  const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(plane_row(node, p.near[2])), r.oz), r.iz);
+  const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(plane_row(node, p.far[0])), r.ox), r.ex);
+  const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(plane_row(node, p.far[1])), r.oy), r.ey);
+  const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(plane_row(node, p.far[2])), r.oz), r.ez);
+  entry = _mm_max_ps(_mm_max_ps(tx0, ty0), _mm_max_ps(r.tmin, tz0));
+  const __m128 exit = _mm_min_ps(_mm_min_ps(tx1, ty1), _mm_min_ps(tz1, t_limit));
+  return _mm_movemask_ps(_mm_cmple_ps(entry, exit));
 }
 
-/// Möller–Trumbore on four triangles without the range test on t: bit k says lane k passed (det nonzero and
-/// finite, u, v inside); t, u, v receive every lane's values.
+/// Möller–Trumbore on four triangles, as moller_trumbore computes it, with intersect_triangle's first range test:
+/// bit k says lane k passed (determinant usable, ray inside the triangle, t inside the ray's interval); t, u, v
+/// receive every lane's values when any passed. No early exit before the inside test (they would mispredict more
+/// than the work they skip); the range test spares most rays the scalar clamp for the triangle they start on.
 inline int moller_trumbore4(const BvhTriangleGroup& g, const RayLanes& r, __m128& t, __m128& u, __m128& v) {
   const __m128 e1x = _mm_load_ps(g.e1[0]), e1y = _mm_load_ps(g.e1[1]), e1z = _mm_load_ps(g.e1[2]);
   const __m128 e2x = _mm_load_ps(g.e2[0]), e2y = _mm_load_ps(g.e2[1]), e2z = _mm_load_ps(g.e2[2]);
@@ -170,26 +204,32 @@ inline int moller_trumbore4(const BvhTriangleGroup& g, const RayLanes& r, __m128
   const __m128 pz = _mm_sub_ps(_mm_mul_ps(r.dx, e2y), _mm_mul_ps(e2x, r.dy));
   // glm::dot sums x, y, then z.
   const __m128 det = _mm_add_ps(_mm_add_ps(_mm_mul_ps(e1x, px), _mm_mul_ps(e1y, py)), _mm_mul_ps(e1z, pz));
-  const __m128 abs_det = _mm_andnot_ps(_mm_set1_ps(-0.0f), det);
-  __m128 ok = _mm_and_ps(_mm_cmpneq_ps(det, _mm_setzero_ps()), _mm_cmplt_ps(abs_det, _mm_set1_ps(kInfinity)));
-  if (_mm_movemask_ps(ok) == 0) return 0;
-  const __m128 inv_det = _mm_div_ps(_mm_set1_ps(1.0f), det);
   const __m128 sx = _mm_sub_ps(r.ox, _mm_load_ps(g.v0[0]));
   const __m128 sy = _mm_sub_ps(r.oy, _mm_load_ps(g.v0[1]));
   const __m128 sz = _mm_sub_ps(r.oz, _mm_load_ps(g.v0[2]));
-  u = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(sx, px), _mm_mul_ps(sy, py)), _mm_mul_ps(sz, pz)), inv_det);
-  const __m128 one = _mm_set1_ps(1.0f), zero = _mm_setzero_ps();
-  ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpge_ps(u, zero), _mm_cmple_ps(u, one)));
-  if (_mm_movemask_ps(ok) == 0) return 0;
+  const __m128 u_num = _mm_add_ps(_mm_add_ps(_mm_mul_ps(sx, px), _mm_mul_ps(sy, py)), _mm_mul_ps(sz, pz));
   // q = cross(s, e1)
   const __m128 qx = _mm_sub_ps(_mm_mul_ps(sy, e1z), _mm_mul_ps(e1y, sz));
   const __m128 qy = _mm_sub_ps(_mm_mul_ps(sz, e1x), _mm_mul_ps(e1z, sx));
   const __m128 qz = _mm_sub_ps(_mm_mul_ps(sx, e1y), _mm_mul_ps(e1x, sy));
-  v = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(r.dx, qx), _mm_mul_ps(r.dy, qy)), _mm_mul_ps(r.dz, qz)), inv_det);
-  ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpge_ps(v, zero), _mm_cmple_ps(_mm_add_ps(u, v), one)));
-  const int mask = _mm_movemask_ps(ok);
-  if (mask == 0) return 0;
+  const __m128 v_num = _mm_add_ps(_mm_add_ps(_mm_mul_ps(r.dx, qx), _mm_mul_ps(r.dy, qy)), _mm_mul_ps(r.dz, qz));
+  const __m128 sign_bit = _mm_set1_ps(-0.0f);
+  const __m128 abs_det = _mm_andnot_ps(sign_bit, det);
+  const __m128 det_sign = _mm_and_ps(sign_bit, det);  // multiplying by -1 where det < 0 flips this bit
+  const __m128 u_signed = _mm_xor_ps(u_num, det_sign), v_signed = _mm_xor_ps(v_num, det_sign);
+  const __m128 zero = _mm_setzero_ps();
+  const __m128 usable =
+      _mm_and_ps(_mm_cmpge_ps(abs_det, _mm_set1_ps(kMinDeterminant)), _mm_cmplt_ps(abs_det, _mm_set1_ps(kInfinity)));
+  const __m128 inside = _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(u_signed, zero), _mm_cmpge_ps(v_signed, zero)),
+                                   _mm_cmple_ps(_mm_add_ps(u_signed, v_signed), abs_det));
+  if (_mm_movemask_ps(_mm_and_ps(usable, inside)) == 0) return 0;
+  const __m128 inv_det = _mm_div_ps(_mm_set1_ps(1.0f), det);
   t = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(e2x, qx), _mm_mul_ps(e2y, qy)), _mm_mul_ps(e2z, qz)), inv_det);
+  const __m128 in_range = _mm_and_ps(_mm_cmpgt_ps(t, r.tmin), _mm_cmplt_ps(t, r.tmax));
+  const int mask = _mm_movemask_ps(_mm_and_ps(_mm_and_ps(usable, inside), in_range));
+  if (mask == 0) return 0;
+  u = _mm_mul_ps(u_num, inv_det);
+  v = _mm_mul_ps(v_num, inv_det);
   return mask;
 }
 
@@ -199,13 +239,13 @@ inline float lane(__m128 x, uint32_t k) {
   return values[k];
 }
 
-/// The rest of triangle_hit for one lane that passed Möller–Trumbore: the clamp into the triangle's box, then the
-/// ray's open interval.
+/// The rest of intersect_triangle for one lane that passed Möller–Trumbore: the clamp into the triangle's box, then
+/// the ray's open interval.
 inline bool finish_lane(const RayData& r, const BvhTriangleGroup& g, uint32_t k, float& t) {
   const Vec3 v0(g.v0[0][k], g.v0[1][k], g.v0[2][k]);
   const Vec3 e1(g.e1[0][k], g.e1[1][k], g.e1[2][k]);
   const Vec3 e2(g.e2[0][k], g.e2[1][k], g.e2[2][k]);
-  return clamp_to_triangle_box(r.origin, r.inv_dir, v0, e1, e2, t) && t > r.tmin && t < r.tmax;
+  return clamp_to_triangle_box(r.slab, v0, e1, e2, t) && t > r.tmin && t < r.tmax;
 }
 
 /// A node or leaf waiting on the traversal stack, with the distance at which the ray enters it.
@@ -267,18 +307,32 @@ inline bool intersect_leaf_any(const BvhTriangleGroup* groups, uint32_t first, u
   return false;
 }
 
-/// The children of `node` whose bits are set in `mask`, nearest first (insertion sort of at most Width): all but
-/// the nearest go on the stack, farthest deepest, so that hits in the nearer ones shrink the best distance and let
-/// the farther ones be dropped. Returns the nearest, to visit next. `mask` must not be 0.
+/// The children of `node` whose bits are set in `mask`, nearest first: all but the nearest go on the stack,
+/// farthest deepest, so that hits in the nearer ones shrink the best distance and let the farther ones be dropped.
+/// Returns the nearest, to visit next. One or two children (most nodes) take no loop; more are insertion-sorted.
+/// `mask` must not be 0.
 template <size_t Width, typename Node>
 inline StackEntry push_children_nearest_first(const Node& node, int mask, const float* entry, StackEntry* stack,
                                               uint32_t& size) {
-  StackEntry hits[Width];
-  uint32_t n = 0;
-  while (mask != 0) {
+  auto next = [&] {
     const auto k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
     mask &= mask - 1;
-    const StackEntry e{node.child[k], node.count[k], entry[k]};
+    return StackEntry{node.child[k], node.count[k], entry[k]};
+  };
+  StackEntry nearest = next();
+  if (mask == 0) return nearest;
+  StackEntry other = next();
+  if (other.entry < nearest.entry) std::swap(nearest, other);
+  if (mask == 0) {
+    stack[size++] = other;
+    return nearest;
+  }
+  StackEntry hits[Width];
+  hits[0] = nearest;
+  hits[1] = other;
+  uint32_t n = 2;
+  while (mask != 0) {
+    const StackEntry e = next();
     uint32_t j = n++;
     for (; j > 0 && hits[j - 1].entry > e.entry; --j) hits[j] = hits[j - 1];
     hits[j] = e;

@@ -11,8 +11,9 @@ Box3 bvh_triangle_box(const BvhTriangle& tri) { return triangle_box(tri.v0, tri.
 bool intersect_triangle(const Ray& ray, const Vec3& v0, const Vec3& e1, const Vec3& e2, float& t, float& u, float& v) {
   float tt, uu, vv;
   if (!moller_trumbore(ray.origin, ray.dir, v0, e1, e2, tt, uu, vv)) return false;
+  if (!(tt > ray.tmin && tt < ray.tmax)) return false;
   // The inverse only after a candidate hit: the brute-force loop then costs little more than Möller–Trumbore.
-  if (!clamp_to_triangle_box(ray.origin, safe_inverse(ray.dir), v0, e1, e2, tt)) return false;
+  if (!clamp_to_triangle_box(SlabRay(ray.origin, safe_inverse(ray.dir)), v0, e1, e2, tt)) return false;
   if (!(tt > ray.tmin && tt < ray.tmax)) return false;
   t = tt;
   u = uu;

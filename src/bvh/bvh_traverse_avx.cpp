@@ -10,35 +10,36 @@
 namespace lueur {
 namespace {
 
-/// The ray's origin and inverse direction, broadcast to eight lanes.
+/// The ray's origin and inverse directions, broadcast to eight lanes, and where its near and far planes lie.
 struct RayLanes8 {
-  __m256 ox, oy, oz, ix, iy, iz, tmin;
+  __m256 ox, oy, oz, ix, iy, iz, ex, ey, ez, tmin;
+  PlaneOffsets<kBvhWidth8> planes;
   explicit RayLanes8(const RayData& r)
       : ox(_mm256_set1_ps(r.origin.x)),
         oy(_mm256_set1_ps(r.origin.y)),
         oz(_mm256_set1_ps(r.origin.z)),
-        ix(_mm256_set1_ps(r.inv_dir.x)),
-        iy(_mm256_set1_ps(r.inv_dir.y)),
-        iz(_mm256_set1_ps(r.inv_dir.z)),
-        tmin(_mm256_set1_ps(r.tmin)) {}
+        ix(_mm256_set1_ps(r.slab.inv_dir.x)),
+        iy(_mm256_set1_ps(r.slab.inv_dir.y)),
+        iz(_mm256_set1_ps(r.slab.inv_dir.z)),
+        ex(_mm256_set1_ps(r.slab.inv_dir_exit.x)),
+        ey(_mm256_set1_ps(r.slab.inv_dir_exit.y)),
+        ez(_mm256_set1_ps(r.slab.inv_dir_exit.z)),
+        tmin(_mm256_set1_ps(r.tmin)),
+        planes(r.slab.inv_dir) {}
 };
 
 /// hit_boxes on the eight children of a node (AVX min/max return their second operand on NaN, like SSE's).
 inline int hit_boxes8(const BvhWideNode8& node, const RayLanes8& r, __m256 t_limit, __m256& entry) {
-  const __m256 tx0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.lo[0]), r.ox), r.ix);
-  const __m256 tx1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.hi[0]), r.ox), r.ix);
-  const __m256 ty0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.lo[1]), r.oy), r.iy);
-  const __m256 ty1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.hi[1]), r.oy), r.iy);
-  const __m256 tz0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.lo[2]), r.oz), r.iz);
-  const __m256 tz1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(node.hi[2]), r.oz), r.iz);
-  const __m256 box_entry =
-      _mm256_max_ps(_mm256_max_ps(_mm256_min_ps(tx0, tx1), _mm256_min_ps(ty0, ty1)), _mm256_min_ps(tz0, tz1));
-  const __m256 box_exit = _mm256_mul_ps(
-      _mm256_min_ps(_mm256_min_ps(_mm256_max_ps(tx0, tx1), _mm256_max_ps(ty0, ty1)), _mm256_max_ps(tz0, tz1)),
-      _mm256_set1_ps(kExitScale));
-  entry = _mm256_max_ps(box_entry, r.tmin);
-  return _mm256_movemask_ps(
-      _mm256_and_ps(_mm256_cmp_ps(entry, box_exit, _CMP_LE_OQ), _mm256_cmp_ps(entry, t_limit, _CMP_LE_OQ)));
+  const PlaneOffsets<kBvhWidth8>& p = r.planes;
+  const __m256 tx0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(plane_row(node, p.near[0])), r.ox), r.ix);
+  const __m256 ty0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(plane_row(node, p.near[1])), r.oy), r.iy);
+  const __m256 tz0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(plane_row(node, p.near[2])), r.oz), r.iz);
+  const __m256 tx1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(plane_row(node, p.far[0])), r.ox), r.ex);
+  const __m256 ty1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(plane_row(node, p.far[1])), r.oy), r.ey);
+  const __m256 tz1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(plane_row(node, p.far[2])), r.oz), r.ez);
+  entry = _mm256_max_ps(_mm256_max_ps(tx0, ty0), _mm256_max_ps(r.tmin, tz0));
+  const __m256 exit = _mm256_min_ps(_mm256_min_ps(tx1, ty1), _mm256_min_ps(tz1, t_limit));
+  return _mm256_movemask_ps(_mm256_cmp_ps(entry, exit, _CMP_LE_OQ));
 }
 
 constexpr uint32_t kStackSize8 = (kBvhWidth8 - 1) * kBvhMaxDepth + 1;
