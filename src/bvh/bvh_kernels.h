@@ -153,10 +153,9 @@ inline const float* plane_row(const Node& node, uint32_t offset) {
   return reinterpret_cast<const float*>(reinterpret_cast<const char*>(&node) + offset);
 }
 
-/// The ray, broadcast to four lanes.
+/// What the 4-lane triangle test needs of the ray, broadcast: origin, direction and interval.
 struct RayLanes {
-  __m128 ox, oy, oz, dx, dy, dz, ix, iy, iz, ex, ey, ez, tmin, tmax;
-  PlaneOffsets<kBvhWidth> planes;
+  __m128 ox, oy, oz, dx, dy, dz, tmin, tmax;
   explicit RayLanes(const RayData& r)
       : ox(_mm_set1_ps(r.origin.x)),
         oy(_mm_set1_ps(r.origin.y)),
@@ -164,6 +163,19 @@ struct RayLanes {
         dx(_mm_set1_ps(r.dir.x)),
         dy(_mm_set1_ps(r.dir.y)),
         dz(_mm_set1_ps(r.dir.z)),
+        tmin(_mm_set1_ps(r.tmin)),
+        tmax(_mm_set1_ps(r.tmax)) {}
+};
+
+/// What the 4-wide box test needs: origin and inverse directions broadcast, and where the near and far planes lie.
+/// (The 8-wide traversal has its own, and never makes this one.)
+struct BoxLanes {
+  __m128 ox, oy, oz, ix, iy, iz, ex, ey, ez, tmin;
+  PlaneOffsets<kBvhWidth> planes;
+  explicit BoxLanes(const RayData& r)
+      : ox(_mm_set1_ps(r.origin.x)),
+        oy(_mm_set1_ps(r.origin.y)),
+        oz(_mm_set1_ps(r.origin.z)),
         ix(_mm_set1_ps(r.slab.inv_dir.x)),
         iy(_mm_set1_ps(r.slab.inv_dir.y)),
         iz(_mm_set1_ps(r.slab.inv_dir.z)),
@@ -171,14 +183,13 @@ struct RayLanes {
         ey(_mm_set1_ps(r.slab.inv_dir_exit.y)),
         ez(_mm_set1_ps(r.slab.inv_dir_exit.z)),
         tmin(_mm_set1_ps(r.tmin)),
-        tmax(_mm_set1_ps(r.tmax)),
         planes(r.slab.inv_dir) {}
 };
 
 /// slab_span on the four children of a node, limited to [tmin, t_limit]: bit k of the result says whether child k
 /// may hold a hit no farther than t_limit; entry receives the tmin-clamped entry distances. Empty slots have NaN
 /// planes: SSE max returns its second operand when either is NaN, so the NaN reaches `entry` and fails the compare.
-inline int hit_boxes(const BvhWideNode& node, const RayLanes& r, __m128 t_limit, __m128& entry) {
+inline int hit_boxes(const BvhWideNode& node, const BoxLanes& r, __m128 t_limit, __m128& entry) {
   const PlaneOffsets<kBvhWidth>& p = r.planes;
   const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(plane_row(node, p.near[0])), r.ox), r.ix);
   const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(plane_row(node, p.near[1])), r.oy), r.iy);

@@ -26,6 +26,7 @@ Hit intersect_closest(const Bvh& bvh, const Ray& ray) {
   if (bvh.empty()) return Hit{};
   const RayData r(ray);
   const RayLanes lanes(r);
+  const BoxLanes box_lanes(r);
   const BvhWideNode* nodes = bvh.wide_nodes.data();
   const BvhTriangleGroup* groups = bvh.groups.data();
 
@@ -38,7 +39,7 @@ Hit intersect_closest(const Bvh& bvh, const Ray& ray) {
     if (current.count == 0) {
       const BvhWideNode& node = nodes[current.child];
       __m128 entry_lanes;
-      const int mask = hit_boxes(node, lanes, _mm_set1_ps(best.t), entry_lanes);
+      const int mask = hit_boxes(node, box_lanes, _mm_set1_ps(best.t), entry_lanes);
       if (mask != 0) {
         alignas(16) float entry[kBvhWidth];
         _mm_store_ps(entry, entry_lanes);
@@ -61,6 +62,7 @@ bool intersect_any(const Bvh& bvh, const Ray& ray) {
   if (bvh.empty()) return false;
   const RayData r(ray);
   const RayLanes lanes(r);
+  const BoxLanes box_lanes(r);
   const __m128 t_limit = _mm_set1_ps(r.tmax);
   const BvhWideNode* nodes = bvh.wide_nodes.data();
   const BvhTriangleGroup* groups = bvh.groups.data();
@@ -73,7 +75,7 @@ bool intersect_any(const Bvh& bvh, const Ray& ray) {
     if (current.count == 0) {
       const BvhWideNode& node = nodes[current.child];
       __m128 entry;
-      const int mask = hit_boxes(node, lanes, t_limit, entry);
+      const int mask = hit_boxes(node, box_lanes, t_limit, entry);
       if (mask != 0) {
         current = push_children_in_order(node, mask, stack, size);
         continue;
