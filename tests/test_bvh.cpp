@@ -182,6 +182,79 @@ RayStats compare_with_brute_force(const Corners& corners, const Bvh& bvh, size_t
 }
 
 /// Walks the tree from the root and checks its structure; returns the deepest node depth.
+/// The wide tree the queries traverse (8-wide or 4-wide, whichever was built): every inner slot's node lies inside
+/// the slot's box, every leaf holds at most kBvhMaxLeafSize triangles inside its box, and every kept triangle is in
+/// exactly one leaf.
+template <typename Node, uint32_t W>
+void check_wide_tree(const Bvh& bvh, const HugePageVector<Node>& nodes, const Corners& corners) {
+  size_t failures = 0;
+  auto fail = [&](const std::string& what) {
+    if (++failures <= 5) ADD_FAILURE() << what;
+  };
+  std::vector<int> id_visits(corners.size() / 3, 0);
+  auto inside = [](const Vec3& p, const Vec3& lo, const Vec3& hi) {
+    return p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= hi.x && p.y <= hi.y && p.z <= hi.z;
+  };
+  struct Item {
+    uint32_t node;
+    Vec3 lo, hi;
+  };
+  std::vector<Item> stack{{0, Vec3(-kInfinity), Vec3(kInfinity)}};
+  size_t visited = 0;
+  while (!stack.empty()) {
+    const Item item = stack.back();
+    stack.pop_back();
+    if (item.node >= nodes.size() || ++visited > nodes.size()) {
+      fail("wide node " + std::to_string(item.node) + " out of range or reached twice");
+      continue;
+    }
+    const Node& node = nodes[item.node];
+    uint32_t used = 0;
+    for (uint32_t k = 0; k < W; ++k) {
+      const Vec3 lo(node.lo[0][k], node.lo[1][k], node.lo[2][k]), hi(node.hi[0][k], node.hi[1][k], node.hi[2][k]);
+      if (std::isnan(lo.x)) continue;  // an unused slot
+      ++used;
+      if (!inside(lo, item.lo, item.hi) || !inside(hi, item.lo, item.hi)) fail("wide slot outside its parent's box");
+      if (node.count[k] == 0) {
+        stack.push_back({node.child[k], lo, hi});
+        continue;
+      }
+      if (node.count[k] > bvh_group_count(kBvhMaxLeafSize)) fail("wide leaf with too many groups");
+      uint32_t triangles = 0;
+      for (uint32_t g = node.child[k]; g < node.child[k] + node.count[k] && g < bvh.groups.size(); ++g) {
+        for (uint32_t lane = 0; lane < kBvhWidth; ++lane) {
+          const uint32_t id = bvh.groups[g].id[lane];
+          if (id == kNoHit) continue;
+          ++triangles;
+          if (id >= id_visits.size()) {
+            fail("wide leaf triangle id out of range");
+            continue;
+          }
+          ++id_visits[id];
+          for (int corner = 0; corner < 3; ++corner)
+            if (!inside(corners[3 * id + corner], lo, hi)) fail("triangle " + std::to_string(id) + " outside its leaf");
+        }
+      }
+      if (triangles == 0 || triangles > kBvhMaxLeafSize)
+        fail("wide leaf of " + std::to_string(triangles) + " triangles");
+    }
+    if (used == 0) fail("wide node " + std::to_string(item.node) + " has no children");
+  }
+  for (size_t i = 0; i < id_visits.size(); ++i) {
+    const int expected = triangle_finite(corners, i) ? 1 : 0;
+    if (id_visits[i] != expected)
+      fail("input triangle " + std::to_string(i) + " is in " + std::to_string(id_visits[i]) + " wide leaves");
+  }
+  EXPECT_EQ(failures, 0u);
+}
+
+void check_wide_invariants(const Bvh& bvh, const Corners& corners) {
+  if (!bvh.wide8_nodes.empty())
+    check_wide_tree<BvhWideNode8, kBvhWidth8>(bvh, bvh.wide8_nodes, corners);
+  else
+    check_wide_tree<BvhWideNode, kBvhWidth>(bvh, bvh.wide_nodes, corners);
+}
+
 uint32_t check_invariants(const Bvh& bvh, const Corners& corners) {
   size_t finite_count = 0;
   for (size_t i = 0; i < corners.size() / 3; ++i) finite_count += triangle_finite(corners, i) ? 1 : 0;
@@ -232,7 +305,7 @@ uint32_t check_invariants(const Bvh& bvh, const Corners& corners) {
         stack.push_back({c, item.depth + 1});
       }
     } else {
-      if (node.count > kBvhMaxLeafSize) fail("leaf " + std::to_string(item.node) + " holds too many triangles");
+      if (node.count > kBvhWidth) fail("leaf " + std::to_string(item.node) + " holds more than one group");
       if (static_cast<size_t>(node.first) + node.count > bvh.triangles.size()) {
         fail("leaf " + std::to_string(item.node) + " reaches past the triangles");
         continue;
@@ -276,6 +349,7 @@ uint32_t check_invariants(const Bvh& bvh, const Corners& corners) {
       fail("input triangle " + std::to_string(i) + " appears " + std::to_string(id_visits[i]) + " times");
   }
   EXPECT_EQ(failures, 0u);
+  check_wide_invariants(bvh, corners);
   return max_depth;
 }
 

@@ -10,13 +10,14 @@
 
 namespace lueur {
 
-/// Largest number of triangles in one leaf.
+/// Largest number of triangles in one leaf of the wide tree (the BVH2's leaves hold at most kBvhWidth).
 inline constexpr uint32_t kBvhMaxLeafSize = 8;
 /// Bound on the depth of any node (the root has depth 0); traversal stacks of this many entries cannot overflow.
 inline constexpr uint32_t kBvhMaxDepth = 128;
 
-/// 32 bytes: the box, and either the index of the first of two adjacent children (count == 0)
-/// or the first triangle of a leaf (count > 0) in the BVH's own triangle order.
+/// 32 bytes: the box, and either the index of the first of two adjacent children (count == 0), which sit at higher
+/// indices than their parent, or the first triangle of a leaf (count > 0) in the BVH's own triangle order. The
+/// triangles under any node are a contiguous range of that order.
 struct BvhNode {
   Vec3 lo;
   uint32_t first;
@@ -32,6 +33,10 @@ struct BvhTriangle {
 
 /// Children per node of the traversal form, and triangles per leaf group: one SSE register of floats.
 inline constexpr uint32_t kBvhWidth = 4;
+static_assert(kBvhMaxLeafSize >= kBvhWidth, "a BVH2 leaf must fit in a leaf of the wide tree");
+
+/// Triangle groups (tested together) that `count` triangles take.
+inline constexpr uint32_t bvh_group_count(uint32_t count) { return (count + kBvhWidth - 1) / kBvhWidth; }
 
 /// A node of the traversal form: the boxes of up to four children structure-of-arrays (lo[axis][child]), so that
 /// one SSE slab test covers all four. An unused slot has NaN bounds, which no ray can enter.

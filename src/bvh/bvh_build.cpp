@@ -1,5 +1,7 @@
-// Builds Lueur's BVH: a binned-SAH BVH2 of 32-byte nodes over triangles, then lays the triangles out in leaf order.
-// Depends on core (math, ray, box) only; must not know about scenes, materials or rendering.
+// Builds Lueur's BVH: a binned-SAH BVH2 of 32-byte nodes over triangles, split down to leaves of one triangle group,
+// then lays the triangles out in leaf order. Which subtrees become leaves of the wide tree the queries traverse is
+// the collapse's decision (bvh_wide.cpp). Depends on core (math, ray, box) only; must not know about scenes,
+// materials or rendering.
 
 #include <algorithm>
 #include <array>
@@ -20,17 +22,12 @@ namespace {
 
 // 32 bins keep the split quality close to a full sweep while a node costs one pass over its triangles.
 constexpr int kBinCount = 32;
-// Relative costs of visiting an inner node and of testing one group of kBvhWidth triangles (one SIMD test: the
-// leaves are packed in such groups, so 1 or 4 triangles cost the same), in the SAH.
-constexpr float kTraversalCost = 1.0f;
-constexpr float kIntersectionCost = 1.0f;
-
-/// Triangle groups a leaf of `count` triangles takes: the unit of the SAH's leaf cost.
-inline float group_cost(uint32_t count) { return static_cast<float>((count + kBvhWidth - 1) / kBvhWidth); }
+/// Triangle groups a leaf of `count` triangles takes: the unit of the SAH's cost (one SIMD test: 1 or 4 triangles
+/// cost the same).
+inline float group_cost(uint32_t count) { return static_cast<float>(bvh_group_count(count)); }
 // From this depth on nodes are split by object median only. Median splits halve the count, so leaves are
 // reached within 32 more levels even for 2^32 triangles, which keeps every node shallower than kBvhMaxDepth.
 constexpr uint32_t kSahDepthLimit = kBvhMaxDepth - 32;
-static_assert(kBvhMaxLeafSize >= kBvhWidth, "nodes of kBvhWidth triangles or fewer are always leaves");
 // Subtrees this small (in triangles) are built in parallel once the top of the tree is done.
 constexpr uint32_t kParallelGrain = 4096;
 // Above the subtrees, a node's bounds and bins are computed by several threads, each over a slice of at least this
@@ -246,17 +243,14 @@ void build_node(HugePageVector<PrimRef>& prims, HugePageVector<BvhNode>& nodes, 
   const Box3 box = sse_box.box(), centroids = sse_centroids.box();
   const uint32_t count = task.end - task.begin;
 
+  // Nodes of at most kBvhWidth triangles (one group test) are leaves; larger ones are always split, at the best
+  // binned-SAH split, so that the collapse can open any subtree of more than one group to fill a wide node.
   bool split = false;
   uint32_t mid = 0;
-  // A leaf of at most kBvhWidth triangles is one group test; no split can cost less (it adds a traversal step and
-  // a second group), so such nodes skip the SAH: most nodes near the leaves are this small.
   if (count > kBvhWidth) {
     if (task.depth < kSahDepthLimit) {
       const Split s = find_sah_split(prims, task.begin, task.end, centroids);
-      const float area = box.area();
-      const float leaf_cost = kIntersectionCost * group_cost(count) * area;
-      const float split_cost = kTraversalCost * area + kIntersectionCost * s.cost;
-      if (s.axis >= 0 && (count > kBvhMaxLeafSize || split_cost < leaf_cost)) {
+      if (s.axis >= 0) {
         const int axis = s.axis;
         const float lo = centroids.lo[axis];
         const float scale = static_cast<float>(kBinCount) / (centroids.hi[axis] - lo);
@@ -268,7 +262,7 @@ void build_node(HugePageVector<PrimRef>& prims, HugePageVector<BvhNode>& nodes, 
       }
     }
     // All centroids coincide, no SAH split is finite, or the depth budget for SAH is spent.
-    if (!split && count > kBvhMaxLeafSize) {
+    if (!split) {
       mid = median_split(prims, task.begin, task.end, centroids);
       split = true;
     }
