@@ -5,6 +5,7 @@
 
 #include <emmintrin.h>  // SSE2 only: x86-64's baseline, so Debug builds without -march compile it too
 
+#include <algorithm>
 #include <bit>
 #include <cstddef>
 #include <utility>
@@ -318,16 +319,34 @@ inline bool intersect_leaf_any(const BvhTriangleGroup* groups, uint32_t first, u
   return false;
 }
 
+/// Where a node's children and leaves lie, and how to start loading one: as soon as a node test selects a child,
+/// all its cache lines are requested (as Embree does), so that the load of the child visited next overlaps the
+/// sorting and branching that choose it, and stacked siblings may arrive before they are popped. On scenes larger
+/// than the caches this hides much of the memory latency. Closest-hit queries only: it gave any-hit nothing
+/// measurable.
+template <typename Node>
+struct ChildMemory {
+  const Node* nodes;
+  const BvhTriangleGroup* groups;
+  void prefetch(uint32_t child, uint32_t count) const {
+    const char* p =
+        count != 0 ? reinterpret_cast<const char*>(groups + child) : reinterpret_cast<const char*>(nodes + child);
+    constexpr size_t kBytes = std::max(sizeof(Node), sizeof(BvhTriangleGroup));
+    for (size_t offset = 0; offset < kBytes; offset += 64) _mm_prefetch(p + offset, _MM_HINT_T0);
+  }
+};
+
 /// The children of `node` whose bits are set in `mask`, nearest first: all but the nearest go on the stack,
 /// farthest deepest, so that hits in the nearer ones shrink the best distance and let the farther ones be dropped.
 /// Returns the nearest, to visit next. One or two children (most nodes) take no loop; more are insertion-sorted.
 /// `mask` must not be 0.
 template <size_t Width, typename Node>
-inline StackEntry push_children_nearest_first(const Node& node, int mask, const float* entry, StackEntry* stack,
-                                              uint32_t& size) {
+inline StackEntry push_children_nearest_first(const Node& node, int mask, const float* entry,
+                                              const ChildMemory<Node>& memory, StackEntry* stack, uint32_t& size) {
   auto next = [&] {
     const auto k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
     mask &= mask - 1;
+    memory.prefetch(node.child[k], node.count[k]);
     return StackEntry{node.child[k], node.count[k], entry[k]};
   };
   StackEntry nearest = next();

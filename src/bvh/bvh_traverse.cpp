@@ -30,6 +30,7 @@ Hit intersect_closest(const Bvh& bvh, const Ray& ray) {
   const BvhWideNode* nodes = bvh.wide_nodes.data();
   const BvhTriangleGroup* groups = bvh.groups.data();
 
+  const ChildMemory<BvhWideNode> memory{nodes, groups};
   BestHit best{r.tmax};
   StackEntry stack[kStackSize];
   uint32_t size = 0;
@@ -43,7 +44,7 @@ Hit intersect_closest(const Bvh& bvh, const Ray& ray) {
       if (mask != 0) {
         alignas(16) float entry[kBvhWidth];
         _mm_store_ps(entry, entry_lanes);
-        current = push_children_nearest_first<kBvhWidth>(node, mask, entry, stack, size);
+        current = push_children_nearest_first<kBvhWidth>(node, mask, entry, memory, stack, size);
         continue;
       }
     } else {

@@ -54,6 +54,7 @@ Hit intersect_closest_wide8(const Bvh& bvh, const Ray& ray) {
   const BvhWideNode8* nodes = bvh.wide8_nodes.data();
   const BvhTriangleGroup* groups = bvh.groups.data();
 
+  const ChildMemory<BvhWideNode8> memory{nodes, groups};
   BestHit best{r.tmax};
   StackEntry stack[kStackSize8];
   uint32_t size = 0;
@@ -67,7 +68,7 @@ Hit intersect_closest_wide8(const Bvh& bvh, const Ray& ray) {
       if (mask != 0) {
         alignas(32) float entry[kBvhWidth8];
         _mm256_store_ps(entry, entry_lanes);
-        current = push_children_nearest_first<kBvhWidth8>(node, mask, entry, stack, size);
+        current = push_children_nearest_first<kBvhWidth8>(node, mask, entry, memory, stack, size);
         continue;
       }
     } else {
