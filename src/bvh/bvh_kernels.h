@@ -168,39 +168,59 @@ struct RayLanes {
         tmax(_mm_set1_ps(r.tmax)) {}
 };
 
-/// What the 4-wide box test needs: origin and inverse directions broadcast, and where the near and far planes lie.
-/// (The 8-wide traversal has its own, and never makes this one.)
+/// The SSE operations the 4-wide box test runs on; the 8-wide traversal supplies the same for AVX (Avx, in its own
+/// translation unit, compiled with -mavx), so that one box test serves both widths.
+struct Sse {
+  using V = __m128;
+  static constexpr uint32_t kWidth = kBvhWidth;
+  static V broadcast(float x) { return _mm_set1_ps(x); }
+  static V load(const float* p) { return _mm_load_ps(p); }
+  static V sub(V a, V b) { return _mm_sub_ps(a, b); }
+  static V mul(V a, V b) { return _mm_mul_ps(a, b); }
+  static V min(V a, V b) { return _mm_min_ps(a, b); }
+  static V max(V a, V b) { return _mm_max_ps(a, b); }
+  static int less_equal_mask(V a, V b) { return _mm_movemask_ps(_mm_cmple_ps(a, b)); }
+};
+
+/// What the box test needs of the ray, broadcast to the lanes of `Simd::V`: origin and inverse directions, and
+/// where the near and far planes of a node of `Simd::kWidth` children lie.
+template <typename Simd>
 struct BoxLanes {
-  __m128 ox, oy, oz, ix, iy, iz, ex, ey, ez, tmin;
-  PlaneOffsets<kBvhWidth> planes;
+  using V = typename Simd::V;
+  V ox, oy, oz, ix, iy, iz, ex, ey, ez, tmin;
+  PlaneOffsets<Simd::kWidth> planes;
   explicit BoxLanes(const RayData& r)
-      : ox(_mm_set1_ps(r.origin.x)),
-        oy(_mm_set1_ps(r.origin.y)),
-        oz(_mm_set1_ps(r.origin.z)),
-        ix(_mm_set1_ps(r.slab.inv_dir.x)),
-        iy(_mm_set1_ps(r.slab.inv_dir.y)),
-        iz(_mm_set1_ps(r.slab.inv_dir.z)),
-        ex(_mm_set1_ps(r.slab.inv_dir_exit.x)),
-        ey(_mm_set1_ps(r.slab.inv_dir_exit.y)),
-        ez(_mm_set1_ps(r.slab.inv_dir_exit.z)),
-        tmin(_mm_set1_ps(r.tmin)),
+      : ox(Simd::broadcast(r.origin.x)),
+        oy(Simd::broadcast(r.origin.y)),
+        oz(Simd::broadcast(r.origin.z)),
+        ix(Simd::broadcast(r.slab.inv_dir.x)),
+        iy(Simd::broadcast(r.slab.inv_dir.y)),
+        iz(Simd::broadcast(r.slab.inv_dir.z)),
+        ex(Simd::broadcast(r.slab.inv_dir_exit.x)),
+        ey(Simd::broadcast(r.slab.inv_dir_exit.y)),
+        ez(Simd::broadcast(r.slab.inv_dir_exit.z)),
+        tmin(Simd::broadcast(r.tmin)),
         planes(r.slab.inv_dir) {}
 };
 
-/// slab_span on the four children of a node, limited to [tmin, t_limit]: bit k of the result says whether child k
-/// may hold a hit no farther than t_limit; entry receives the tmin-clamped entry distances. Empty slots have NaN
-/// planes: SSE max returns its second operand when either is NaN, so the NaN reaches `entry` and fails the compare.
-inline int hit_boxes(const BvhWideNode& node, const BoxLanes& r, __m128 t_limit, __m128& entry) {
-  const PlaneOffsets<kBvhWidth>& p = r.planes;
-  const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(plane_row(node, p.near[0])), r.ox), r.ix);
-  const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(plane_row(node, p.near[1])), r.oy), r.iy);
-  const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(plane_row(node, p.near[2])), r.oz), r.iz);
-  const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(plane_row(node, p.far[0])), r.ox), r.ex);
-  const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(plane_row(node, p.far[1])), r.oy), r.ey);
-  const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(plane_row(node, p.far[2])), r.oz), r.ez);
-  entry = _mm_max_ps(_mm_max_ps(tx0, ty0), _mm_max_ps(r.tmin, tz0));
-  const __m128 exit = _mm_min_ps(_mm_min_ps(tx1, ty1), _mm_min_ps(tz1, t_limit));
-  return _mm_movemask_ps(_mm_cmple_ps(entry, exit));
+/// slab_span on all children of a node, limited to [tmin, t_limit]: bit k of the result says whether child k may
+/// hold a hit no farther than t_limit; entry receives the tmin-clamped entry distances. Empty slots have NaN
+/// planes: SSE and AVX max return their second operand when either is NaN, so the NaN reaches `entry` and fails the
+/// compare.
+template <typename Simd, typename Node>
+inline int hit_boxes(const Node& node, const BoxLanes<Simd>& r, typename Simd::V t_limit, typename Simd::V& entry) {
+  using V = typename Simd::V;
+  const PlaneOffsets<Simd::kWidth>& p = r.planes;
+  auto plane_t = [&](uint32_t offset, V origin, V inverse) {
+    return Simd::mul(Simd::sub(Simd::load(plane_row(node, offset)), origin), inverse);
+  };
+  const V tx0 = plane_t(p.near[0], r.ox, r.ix), ty0 = plane_t(p.near[1], r.oy, r.iy);
+  const V tz0 = plane_t(p.near[2], r.oz, r.iz);
+  const V tx1 = plane_t(p.far[0], r.ox, r.ex), ty1 = plane_t(p.far[1], r.oy, r.ey);
+  const V tz1 = plane_t(p.far[2], r.oz, r.ez);
+  entry = Simd::max(Simd::max(tx0, ty0), Simd::max(r.tmin, tz0));
+  const V exit = Simd::min(Simd::min(tx1, ty1), Simd::min(tz1, t_limit));
+  return Simd::less_equal_mask(entry, exit);
 }
 
 /// Möller–Trumbore on four triangles, as moller_trumbore computes it, with intersect_triangle's first range test:

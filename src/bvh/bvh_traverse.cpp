@@ -26,7 +26,7 @@ Hit intersect_closest(const Bvh& bvh, const Ray& ray) {
   if (bvh.empty()) return Hit{};
   const RayData r(ray);
   const RayLanes lanes(r);
-  const BoxLanes box_lanes(r);
+  const BoxLanes<Sse> box_lanes(r);
   const BvhWideNode* nodes = bvh.wide_nodes.data();
   const BvhTriangleGroup* groups = bvh.groups.data();
 
@@ -63,7 +63,7 @@ bool intersect_any(const Bvh& bvh, const Ray& ray) {
   if (bvh.empty()) return false;
   const RayData r(ray);
   const RayLanes lanes(r);
-  const BoxLanes box_lanes(r);
+  const BoxLanes<Sse> box_lanes(r);
   const __m128 t_limit = _mm_set1_ps(r.tmax);
   const BvhWideNode* nodes = bvh.wide_nodes.data();
   const BvhTriangleGroup* groups = bvh.groups.data();
