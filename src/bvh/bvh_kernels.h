@@ -254,11 +254,12 @@ inline int moller_trumbore4(const BvhTriangleGroup& g, const RayLanes& r, __m128
       _mm_and_ps(_mm_cmpge_ps(abs_det, _mm_set1_ps(kMinDeterminant)), _mm_cmplt_ps(abs_det, _mm_set1_ps(kInfinity)));
   const __m128 inside = _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(u_signed, zero), _mm_cmpge_ps(v_signed, zero)),
                                    _mm_cmple_ps(_mm_add_ps(u_signed, v_signed), abs_det));
-  if (_mm_movemask_ps(_mm_and_ps(usable, inside)) == 0) return 0;
+  const __m128 crosses = _mm_and_ps(usable, inside);
+  if (_mm_movemask_ps(crosses) == 0) return 0;
   const __m128 inv_det = _mm_div_ps(_mm_set1_ps(1.0f), det);
   t = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(e2x, qx), _mm_mul_ps(e2y, qy)), _mm_mul_ps(e2z, qz)), inv_det);
   const __m128 in_range = _mm_and_ps(_mm_cmpgt_ps(t, r.tmin), _mm_cmplt_ps(t, r.tmax));
-  const int mask = _mm_movemask_ps(_mm_and_ps(_mm_and_ps(usable, inside), in_range));
+  const int mask = _mm_movemask_ps(_mm_and_ps(crosses, in_range));
   if (mask == 0) return 0;
   u = _mm_mul_ps(u_num, inv_det);
   v = _mm_mul_ps(v_num, inv_det);

@@ -50,10 +50,11 @@ std::vector<Subtree> describe_subtrees(const Bvh& bvh) {
     subtree.count = left.count + right.count;
     if (subtree.count > kBvhMaxLeafSize) continue;
     const auto groups = [](uint32_t count) { return static_cast<float>(bvh_group_count(count)); };
-    const float leaf_cost = kIntersectionCost * groups(subtree.count) * area_of(node);
+    const float area = area_of(node);
+    const float leaf_cost = kIntersectionCost * groups(subtree.count) * area;
     const float split_cost =
-        kTraversalCost * area_of(node) + kIntersectionCost * (groups(left.count) * area_of(bvh.nodes[node.first]) +
-                                                              groups(right.count) * area_of(bvh.nodes[node.first + 1]));
+        kTraversalCost * area + kIntersectionCost * (groups(left.count) * area_of(bvh.nodes[node.first]) +
+                                                     groups(right.count) * area_of(bvh.nodes[node.first + 1]));
     subtree.leaf = !(split_cost < leaf_cost);
   }
   return subtrees;
@@ -132,8 +133,8 @@ void collapse(Bvh& bvh, HugePageVector<Node>& wide_nodes) {
         for (uint32_t k = 0; k < used; ++k) {
           const BvhNode& n = bvh.nodes[slots[k]];
           if (n.count > 0) continue;
-          if (area_of(n) > best_area) {
-            best_area = area_of(n);
+          if (const float area = area_of(n); area > best_area) {
+            best_area = area;
             best = static_cast<int>(k);
           }
         }
