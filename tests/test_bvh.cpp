@@ -675,14 +675,14 @@ TEST(BvhVersusBruteForce, LargeSphereBuiltWithParallelBinning) {
   run_scene({"large sphere", corners, 2000}, 107);
 }
 
-// The tests above trace the tree this CPU gets (8-wide AVX when it has AVX); these check the 4-wide SSE kernels,
-// which CPUs without AVX run, against brute force on any machine.
+// The tests above trace the tree this CPU gets (8-wide AVX2 when it has AVX2); these check the 4-wide SSE kernels,
+// which CPUs without AVX2 run, against brute force on any machine.
 TEST(BvhVersusBruteForce, SseKernelsOnAnyMachine) {
   std::mt19937 rng(7);
   const Corners soup = make_soup(rng, 2000);
   const Corners sphere = make_sphere(40, 80, 3.0f);
   const Bvh default_soup = build_bvh(soup);
-  EXPECT_EQ(default_soup.wide8_nodes.empty(), !bvh_avx_enabled());
+  EXPECT_EQ(default_soup.wide8_nodes.empty(), !bvh_avx2_enabled());
   ::setenv("LUEUR_BVH_ISA", "sse", 1);
   const Bvh sse_soup = build_bvh(soup);
   const Bvh sse_sphere = build_bvh(sphere);

@@ -47,7 +47,7 @@ struct alignas(64) BvhWideNode {
   uint32_t count[kBvhWidth];  ///< 0: inner child (or unused slot); n > 0: a leaf of n triangle groups
 };
 
-/// The same with eight children, traversed with AVX when the CPU has it (bvh_avx_enabled).
+/// The same with eight children, traversed with AVX2 when the CPU has it (bvh_avx2_enabled).
 inline constexpr uint32_t kBvhWidth8 = 8;
 struct alignas(64) BvhWideNode8 {
   float lo[3][kBvhWidth8];
@@ -69,7 +69,7 @@ struct Bvh {
   HugePageVector<BvhNode> nodes;  ///< the binned-SAH BVH2; nodes[0] is the root
   HugePageVector<BvhTriangle> triangles;  ///< reordered once after the build so leaves read them directly
   /// What the queries traverse: the BVH2 collapsed into a 4-wide tree (wide_nodes[0] is the root), or an 8-wide one
-  /// (wide8_nodes) when the CPU has AVX, over leaves of triangle groups. The BVH2 above is kept as the build's
+  /// (wide8_nodes) when the CPU has AVX2, over leaves of triangle groups. The BVH2 above is kept as the build's
   /// record (tests check its invariants).
   HugePageVector<BvhWideNode> wide_nodes;
   HugePageVector<BvhWideNode8> wide8_nodes;
@@ -82,13 +82,13 @@ struct Bvh {
   }
 };
 
-/// Collapses `bvh.nodes` into `bvh.wide8_nodes` (when bvh_avx_enabled) or `bvh.wide_nodes`, and `bvh.groups`
+/// Collapses `bvh.nodes` into `bvh.wide8_nodes` (when bvh_avx2_enabled) or `bvh.wide_nodes`, and `bvh.groups`
 /// (called by build_bvh).
 void build_wide_bvh(Bvh& bvh);
 
-/// Whether builds make the 8-wide AVX tree: the CPU has AVX and the environment does not say LUEUR_BVH_ISA=sse
+/// Whether builds make the 8-wide AVX2 tree: the CPU has AVX2 and the environment does not say LUEUR_BVH_ISA=sse
 /// (which tests use to check the 4-wide SSE kernels on any machine).
-bool bvh_avx_enabled();
+bool bvh_avx2_enabled();
 
 /// Prepares triangle (a, b, c) for intersection: v0 = a, e1 = b - a, e2 = c - a. A zero-area triangle (edge cross
 /// product exactly zero: repeated or collinear vertices) gets zero edges, so its determinant is exactly 0 for every

@@ -1,5 +1,5 @@
 // The ray-triangle and ray-box kernels shared by the traversals of Lueur's BVH: the scalar reference test, and its
-// 4-lane SSE form. Internal to src/bvh: everything has internal linkage, because the AVX translation unit compiles
+// 4-lane SSE form. Internal to src/bvh: everything has internal linkage, because the AVX2 translation unit compiles
 // the same functions with other instruction-set flags and the two copies must never be merged by the linker.
 #pragma once
 
@@ -168,8 +168,8 @@ struct RayLanes {
         tmax(_mm_set1_ps(r.tmax)) {}
 };
 
-/// The SSE operations the 4-wide box test runs on; the 8-wide traversal supplies the same for AVX (Avx, in its own
-/// translation unit, compiled with -mavx), so that one box test serves both widths.
+/// The SSE operations the 4-wide box test runs on; the 8-wide traversal supplies the same for AVX2 (Avx, in its own
+/// translation unit, compiled with -mavx2), so that one box test serves both widths.
 struct Sse {
   using V = __m128;
   static constexpr uint32_t kWidth = kBvhWidth;
@@ -204,9 +204,9 @@ struct BoxLanes {
 };
 
 /// slab_span on all children of a node, limited to [tmin, t_limit]: bit k of the result says whether child k may
-/// hold a hit no farther than t_limit; entry receives the tmin-clamped entry distances. Empty slots have NaN
-/// planes: SSE and AVX max return their second operand when either is NaN, so the NaN reaches `entry` and fails the
-/// compare.
+/// hold a hit no farther than t_limit; entry receives the tmin-clamped entry distances. Empty slots have (positive,
+/// quiet) NaN planes, which must reach `entry` and fail the compare: SSE's float max returns its second operand when
+/// either is NaN; Avx's integer max ranks a positive NaN above every number.
 template <typename Simd, typename Node>
 inline int hit_boxes(const Node& node, const BoxLanes<Simd>& r, typename Simd::V t_limit, typename Simd::V& entry) {
   using V = typename Simd::V;
@@ -290,7 +290,7 @@ struct StackEntry {
 // Each wide node visited pushes at most kBvhWidth - 1 entries, and no path is deeper than kBvhMaxDepth.
 constexpr uint32_t kStackSize = (kBvhWidth - 1) * kBvhMaxDepth + 1;
 
-// ---- the pieces both wide traversals (4-wide SSE, 8-wide AVX) share -------------------------------------------
+// ---- the pieces both wide traversals (4-wide SSE, 8-wide AVX2) share -------------------------------------------
 
 /// The closest hit a traversal has found so far.
 struct BestHit {

@@ -1,5 +1,5 @@
 // Queries on Lueur's BVH: the shared ray-triangle test, and the closest-hit and any-hit traversals of the 4-wide
-// SSE tree (the 8-wide AVX tree has its own in bvh_traverse_avx.cpp). Depends on core (math, ray) and bvh.h only;
+// SSE tree (the 8-wide AVX2 tree has its own in bvh_traverse_avx.cpp). Depends on core (math, ray) and bvh.h only;
 // this is the renderer's hot path, so no allocation and no virtual calls.
 
 #include "bvh/bvh_kernels.h"

@@ -162,10 +162,10 @@ void collapse(Bvh& bvh, HugePageVector<Node>& wide_nodes) {
 
 }  // namespace
 
-bool bvh_avx_enabled() {
+bool bvh_avx2_enabled() {
   const char* isa = std::getenv("LUEUR_BVH_ISA");
   if (isa && std::strcmp(isa, "sse") == 0) return false;
-  return __builtin_cpu_supports("avx");
+  return __builtin_cpu_supports("avx2");
 }
 
 void build_wide_bvh(Bvh& bvh) {
@@ -173,7 +173,7 @@ void build_wide_bvh(Bvh& bvh) {
   bvh.wide8_nodes.clear();
   bvh.groups.clear();
   if (bvh.nodes.empty()) return;
-  if (bvh_avx_enabled())
+  if (bvh_avx2_enabled())
     collapse<BvhWideNode8, kBvhWidth8>(bvh, bvh.wide8_nodes);
   else
     collapse<BvhWideNode, kBvhWidth>(bvh, bvh.wide_nodes);
