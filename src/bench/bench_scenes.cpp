@@ -41,6 +41,12 @@ void add_sphere(Scene& scene, const Vec3& centre, float radius, uint32_t materia
     }
 }
 
+/// Removes the triangles whose material emits (for a closed room: the default light the loader put above it).
+void drop_emitters(Scene& scene) {
+  std::erase_if(scene.triangles, [&](const Triangle& t) { return scene.materials[t.material].emissive(); });
+  collect_emitters(scene);
+}
+
 /// A quad light inside the box, below its top, facing down: for closed rooms, whose default light sits above
 /// the roof where every shadow ray would stop at the ceiling.
 uint32_t add_interior_light(Scene& scene) {
@@ -66,18 +72,23 @@ BenchScene from_file(const std::string& name, const std::string& path, bool insi
   b.name = name;
   b.scene = load_obj(path).scene;
   b.scene.name = name;
-  const Box3 box = b.scene.bounds();
   if (inside) {
-    // From one end of the room, at 60% of its height, toward the lower part of the other end.
+    // A file without emitters comes with the loader's default light, above the roof: left in, it would stretch
+    // the room's box upward and put the camera and the light above the roof, where primary rays see the roof
+    // from outside and shadow and bounce rays leave into empty space.
+    drop_emitters(b.scene);
+    const Box3 box = b.scene.bounds();
+    // From a third of the way along the room (the conference room's end is walled off behind a pillar), at 60% of
+    // its height, toward the lower part of the far end: down the table, as the room is usually shown.
     const Vec3 lo = box.lo, e = box.extent();
     const uint32_t light = add_interior_light(b.scene);
     b.lights = {light, light + 1};
-    b.view.eye = lo + Vec3(0.05f, 0.6f, 0.5f) * e;
+    b.view.eye = lo + Vec3(0.3f, 0.6f, 0.5f) * e;
     b.view.target = lo + Vec3(0.95f, 0.3f, 0.5f) * e;
     b.view.fovy_degrees = 60.0f;
   } else {
     b.lights = b.scene.emitters;
-    b.view = frame_box(box);
+    b.view = frame_box(b.scene.bounds());
   }
   return b;
 }
