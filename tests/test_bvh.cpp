@@ -18,12 +18,18 @@ namespace {
 
 using Corners = std::vector<Vec3>;
 
-/// Whether build_bvh keeps input triangle i: finite vertices and edges.
+/// Whether input triangle i has finite vertices and edges (the brute-force reference skips the others).
 bool triangle_finite(const Corners& corners, size_t i) {
   const Vec3& a = corners[3 * i];
   const Vec3& b = corners[3 * i + 1];
   const Vec3& c = corners[3 * i + 2];
   return is_finite(a) && is_finite(b) && is_finite(c) && is_finite(b - a) && is_finite(c - a);
+}
+
+/// What build_bvh keeps: finite triangles of nonzero area (the others can never be hit).
+bool triangle_kept(const Corners& corners, size_t i) {
+  const Vec3& a = corners[3 * i];
+  return triangle_finite(corners, i) && glm::cross(corners[3 * i + 1] - a, corners[3 * i + 2] - a) != Vec3(0.0f);
 }
 
 /// The reference: every triangle through the same preparation and test as the BVH, ties to the lowest index.
@@ -241,7 +247,7 @@ void check_wide_tree(const Bvh& bvh, const HugePageVector<Node>& nodes, const Co
     if (used == 0) fail("wide node " + std::to_string(item.node) + " has no children");
   }
   for (size_t i = 0; i < id_visits.size(); ++i) {
-    const int expected = triangle_finite(corners, i) ? 1 : 0;
+    const int expected = triangle_kept(corners, i) ? 1 : 0;
     if (id_visits[i] != expected)
       fail("input triangle " + std::to_string(i) + " is in " + std::to_string(id_visits[i]) + " wide leaves");
   }
@@ -256,10 +262,10 @@ void check_wide_invariants(const Bvh& bvh, const Corners& corners) {
 }
 
 uint32_t check_invariants(const Bvh& bvh, const Corners& corners) {
-  size_t finite_count = 0;
-  for (size_t i = 0; i < corners.size() / 3; ++i) finite_count += triangle_finite(corners, i) ? 1 : 0;
-  EXPECT_EQ(bvh.triangles.size(), finite_count);
-  if (finite_count == 0) {
+  size_t kept_count = 0;
+  for (size_t i = 0; i < corners.size() / 3; ++i) kept_count += triangle_kept(corners, i) ? 1 : 0;
+  EXPECT_EQ(bvh.triangles.size(), kept_count);
+  if (kept_count == 0) {
     EXPECT_TRUE(bvh.empty());
     return 0;
   }
@@ -344,7 +350,7 @@ uint32_t check_invariants(const Bvh& bvh, const Corners& corners) {
       fail("triangle slot " + std::to_string(s) + " is in " + std::to_string(slot_visits[s]) + " leaves");
   }
   for (size_t i = 0; i < id_visits.size(); ++i) {
-    const int expected = triangle_finite(corners, i) ? 1 : 0;
+    const int expected = triangle_kept(corners, i) ? 1 : 0;
     if (id_visits[i] != expected)
       fail("input triangle " + std::to_string(i) + " appears " + std::to_string(id_visits[i]) + " times");
   }

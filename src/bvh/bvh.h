@@ -100,8 +100,8 @@ BvhTriangle make_bvh_triangle(const Vec3& a, const Vec3& b, const Vec3& c, uint3
 Box3 bvh_triangle_box(const BvhTriangle& tri);
 
 /// Builds the hierarchy over triangles given as three vertex positions each (`corners.size() == 3 * count`).
-/// Degenerate triangles are kept (they can never be hit); non-finite ones (a non-finite vertex, or edges that
-/// overflow) are dropped.
+/// Triangles that can never be hit are left out: zero-area ones (see make_bvh_triangle) and non-finite ones (a
+/// non-finite vertex, or edges that overflow).
 Bvh build_bvh(const std::vector<Vec3>& corners);
 
 /// Closest intersection with t in (ray.tmin, ray.tmax). Ties in t go to the lowest input index, so the answer
