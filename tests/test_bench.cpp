@@ -76,6 +76,24 @@ TEST(Bench, SmokeRunWritesTheIssuesJsonSchema) {
   }
 }
 
+TEST(Bench, TraversalSectionCountsLueursWorkPerRay) {
+  const std::string dir = test::make_temp_dir("bench-traversal");
+  const std::string path = dir + "/bench.json";
+  const test::CommandResult r = run_bench("--smoke --sections traversal --json " + path);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(test::read_file(path));
+  const auto& traversal = j["traversal"];
+  ASSERT_TRUE(traversal.is_array());
+  ASSERT_EQ(traversal.size(), 6u);  // two scenes x three kinds of rays
+  for (const auto& e : traversal) {
+    EXPECT_GT(e["triangles"].get<int>(), 0);
+    // Every query tests the root's children; a leaf holds at least one group.
+    EXPECT_GE(e["nodes_per_ray"].get<double>(), 1.0);
+    EXPECT_GE(e["groups_per_ray"].get<double>(), e["leaves_per_ray"].get<double>());
+  }
+  EXPECT_TRUE(j["results"].empty());  // throughput was not asked for
+}
+
 TEST(Bench, BadInputIsOneLineAndStatusTwo) {
   for (const std::string args : {"--no-such-option", "--sections build,nonsense", "--json /no/such/dir/b.json"}) {
     const test::CommandResult r = run_bench(args);

@@ -51,7 +51,8 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
   app.add_option("--only", o.only, "only the scenes whose name contains this text");
   app.add_option("--rounds", o.rounds, "alternating timing rounds per figure (default 3; the best is kept)")
       ->check(CLI::Range(1, 1000));
-  app.add_option("--sections", sections, "comma-separated: build,throughput,convergence (default all)");
+  app.add_option("--sections", sections,
+                 "comma-separated: build,throughput,convergence (default), traversal (nodes per ray)");
   app.add_option("--reference-frames", reference_frames, "frames of each convergence reference (default 128)")
       ->check(CLI::Range(1, 100000));
   app.add_option("--convergence-seconds", convergence_seconds, "equal time per convergence variant (default 20)")
@@ -73,8 +74,8 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
     std::istringstream in(sections);
     std::string name;
     while (std::getline(in, name, ',')) {
-      if (name != "build" && name != "throughput" && name != "convergence")
-        throw UsageError("--sections: '" + name + "' is not one of build|throughput|convergence");
+      if (name != "build" && name != "throughput" && name != "traversal" && name != "convergence")
+        throw UsageError("--sections: '" + name + "' is not one of build|throughput|traversal|convergence");
       o.sections.insert(name);
     }
   }
@@ -115,9 +116,22 @@ Json pair(double lueur, const std::optional<double>& embree) {
   return Json{{"lueur", lueur}, {"embree", embree ? Json(*embree) : Json(nullptr)}};
 }
 
+/// Lueur's work per ray on one ray array: a steadier figure than a timing for judging a change to the tree.
+TraversalCounts count_traversal(const Bvh& bvh, const std::vector<Ray>& rays, Query query) {
+  TraversalCounts counts;
+  for (const Ray& r : rays) {
+    if (query == Query::kClosest)
+      (void)intersect_closest(bvh, r, counts);
+    else
+      (void)intersect_any(bvh, r, counts);
+  }
+  return counts;
+}
+
 int run(const BenchOptions& o) {
-  Json results = Json::array(), builds = Json::array(), convergence = Json::array();
-  const bool need_scenes = o.sections.count("build") || o.sections.count("throughput");
+  Json results = Json::array(), builds = Json::array(), traversal = Json::array(), convergence = Json::array();
+  const bool need_rays = o.sections.count("throughput") || o.sections.count("traversal");
+  const bool need_scenes = o.sections.count("build") || need_rays;
   if (!embree_available()) std::fprintf(stderr, "lueur-bench: this build has no Embree: Lueur's figures only\n");
 
   if (need_scenes) {
@@ -131,8 +145,9 @@ int run(const BenchOptions& o) {
     std::vector<ThreadPool*> pools = {&one};
     if (all.thread_count() > 1) pools.push_back(&all);
 
-    std::printf("%-16s %9s %-8s %7s %10s %10s %7s %9s\n", "scene", "triangles", "rays", "threads", "lueur", "embree",
-                "ratio", "agree");
+    if (o.sections.count("throughput"))
+      std::printf("%-16s %9s %-8s %7s %10s %10s %7s %9s\n", "scene", "triangles", "rays", "threads", "lueur", "embree",
+                  "ratio", "agree");
     for (BenchScene& b : scenes) {
       const std::vector<Vec3> corners = corners_of(b.scene);
       const size_t triangles = b.scene.triangles.size();
@@ -150,7 +165,7 @@ int run(const BenchOptions& o) {
           std::fprintf(stderr, ", embree %.1f ms %.1f B/tri", *build.embree_ms, build.embree_bytes.value_or(0.0));
         std::fprintf(stderr, "\n");
       }
-      if (!o.sections.count("throughput")) continue;
+      if (!need_rays) continue;
       Accelerator lueur;
       lueur.bvh = std::move(bvh);
       const RaySets sets = make_ray_sets(b, lueur, o.ray_size, o.ray_size, 1);
@@ -161,6 +176,20 @@ int run(const BenchOptions& o) {
       } kinds[] = {{"primary", &sets.primary, Query::kClosest},
                    {"shadow", &sets.shadow, Query::kAny},
                    {"bounce", &sets.bounce, Query::kClosest}};
+      for (const auto& kind : kinds) {
+        if (!o.sections.count("traversal") || kind.rays->empty()) continue;
+        const TraversalCounts c = count_traversal(lueur.bvh, *kind.rays, kind.query);
+        const auto per_ray = [&](uint64_t n) { return static_cast<double>(n) / static_cast<double>(c.queries); };
+        traversal.push_back(Json{{"scene", b.name},
+                                 {"triangles", triangles},
+                                 {"rays", kind.name},
+                                 {"nodes_per_ray", per_ray(c.nodes)},
+                                 {"leaves_per_ray", per_ray(c.leaves)},
+                                 {"groups_per_ray", per_ray(c.groups)}});
+        std::fprintf(stderr, "lueur-bench: %s %s rays: %.2f nodes, %.2f leaves, %.2f triangle groups per ray\n",
+                     b.name.c_str(), kind.name, per_ray(c.nodes), per_ray(c.leaves), per_ray(c.groups));
+      }
+      if (!o.sections.count("throughput")) continue;
       for (const auto& kind : kinds)
         for (ThreadPool* pool : pools) {
           const Throughput t = measure_throughput(*kind.rays, kind.query, lueur.bvh, embree.get(), *pool, o.timing);
@@ -181,7 +210,8 @@ int run(const BenchOptions& o) {
   if (o.sections.count("convergence")) convergence = run_convergence(o.convergence, stderr);
 
   if (!o.json_path.empty()) {
-    const Json out{{"results", results}, {"build", builds}, {"convergence", convergence}};
+    Json out{{"results", results}, {"build", builds}, {"convergence", convergence}};
+    if (o.sections.count("traversal")) out["traversal"] = traversal;
     write_file_atomically(o.json_path, out.dump(2) + "\n");
     std::printf("%s\n", o.json_path.c_str());
   }

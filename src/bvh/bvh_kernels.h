@@ -410,6 +410,22 @@ inline NodeRef push_children_in_order(const Node& node, int mask, NodeRef* stack
   return first;
 }
 
+/// How a traversal counts its work: NoCounts compiles to nothing, Counting adds to a TraversalCounts.
+struct NoCounts {
+  void query() const {}
+  void node() const {}
+  void leaf(uint32_t) const {}
+};
+struct Counting {
+  TraversalCounts& counts;
+  void query() const { ++counts.queries; }
+  void node() const { ++counts.nodes; }
+  void leaf(uint32_t groups) const {
+    ++counts.leaves;
+    counts.groups += groups;
+  }
+};
+
 inline Hit make_hit(const BestHit& best) {
   Hit hit;
   if (best.id != kNoHit) {
@@ -427,5 +443,7 @@ inline Hit make_hit(const BestHit& best) {
 /// the BVH has one.
 Hit intersect_closest_wide8(const Bvh& bvh, const Ray& ray);
 bool intersect_any_wide8(const Bvh& bvh, const Ray& ray);
+Hit intersect_closest_wide8(const Bvh& bvh, const Ray& ray, TraversalCounts& counts);
+bool intersect_any_wide8(const Bvh& bvh, const Ray& ray, TraversalCounts& counts);
 
 }  // namespace lueur

@@ -21,9 +21,12 @@ bool intersect_triangle(const Ray& ray, const Vec3& v0, const Vec3& e1, const Ve
   return true;
 }
 
-Hit intersect_closest(const Bvh& bvh, const Ray& ray) {
-  if (!bvh.wide8_nodes.empty()) return intersect_closest_wide8(bvh, ray);
+namespace {
+
+template <typename Count>
+Hit closest4(const Bvh& bvh, const Ray& ray, const Count& count) {
   if (bvh.empty()) return Hit{};
+  count.query();
   const RayData r(ray);
   const RayLanes lanes(r);
   const BoxLanes<Sse> box_lanes(r);
@@ -40,6 +43,7 @@ Hit intersect_closest(const Bvh& bvh, const Ray& ray) {
     if (current.count == 0) {
       const BvhWideNode& node = nodes[current.child];
       __m128 entry_lanes;
+      count.node();
       const int mask = hit_boxes(node, box_lanes, _mm_set1_ps(best.t), entry_lanes);
       if (mask != 0) {
         alignas(16) float entry[kBvhWidth];
@@ -48,6 +52,7 @@ Hit intersect_closest(const Bvh& bvh, const Ray& ray) {
         continue;
       }
     } else {
+      count.leaf(current.count);
       intersect_leaf_closest(groups, current.child, current.count, r, lanes, best);
     }
     // Next waiting node that can still hold a hit no farther than the best one.
@@ -58,9 +63,10 @@ Hit intersect_closest(const Bvh& bvh, const Ray& ray) {
   }
 }
 
-bool intersect_any(const Bvh& bvh, const Ray& ray) {
-  if (!bvh.wide8_nodes.empty()) return intersect_any_wide8(bvh, ray);
+template <typename Count>
+bool any4(const Bvh& bvh, const Ray& ray, const Count& count) {
   if (bvh.empty()) return false;
+  count.query();
   const RayData r(ray);
   const RayLanes lanes(r);
   const BoxLanes<Sse> box_lanes(r);
@@ -76,17 +82,41 @@ bool intersect_any(const Bvh& bvh, const Ray& ray) {
     if (current.count == 0) {
       const BvhWideNode& node = nodes[current.child];
       __m128 entry;
+      count.node();
       const int mask = hit_boxes(node, box_lanes, t_limit, entry);
       if (mask != 0) {
         current = push_children_in_order(node, mask, stack, size);
         continue;
       }
-    } else if (intersect_leaf_any(groups, current.child, current.count, r, lanes)) {
-      return true;
+    } else {
+      count.leaf(current.count);
+      if (intersect_leaf_any(groups, current.child, current.count, r, lanes)) return true;
     }
     if (size == 0) return false;
     current = stack[--size];
   }
+}
+
+}  // namespace
+
+Hit intersect_closest(const Bvh& bvh, const Ray& ray) {
+  if (!bvh.wide8_nodes.empty()) return intersect_closest_wide8(bvh, ray);
+  return closest4(bvh, ray, NoCounts{});
+}
+
+bool intersect_any(const Bvh& bvh, const Ray& ray) {
+  if (!bvh.wide8_nodes.empty()) return intersect_any_wide8(bvh, ray);
+  return any4(bvh, ray, NoCounts{});
+}
+
+Hit intersect_closest(const Bvh& bvh, const Ray& ray, TraversalCounts& counts) {
+  if (!bvh.wide8_nodes.empty()) return intersect_closest_wide8(bvh, ray, counts);
+  return closest4(bvh, ray, Counting{counts});
+}
+
+bool intersect_any(const Bvh& bvh, const Ray& ray, TraversalCounts& counts) {
+  if (!bvh.wide8_nodes.empty()) return intersect_any_wide8(bvh, ray, counts);
+  return any4(bvh, ray, Counting{counts});
 }
 
 }  // namespace lueur

@@ -32,10 +32,10 @@ struct Avx {
 
 constexpr uint32_t kStackSize8 = (kBvhWidth8 - 1) * kBvhMaxDepth + 1;
 
-}  // namespace
-
-Hit intersect_closest_wide8(const Bvh& bvh, const Ray& ray) {
+template <typename Count>
+Hit closest8(const Bvh& bvh, const Ray& ray, const Count& count) {
   if (bvh.empty()) return Hit{};
+  count.query();
   const RayData r(ray);
   const RayLanes lanes(r);
   const BoxLanes<Avx> box_lanes(r);
@@ -52,6 +52,7 @@ Hit intersect_closest_wide8(const Bvh& bvh, const Ray& ray) {
     if (current.count == 0) {
       const BvhWideNode8& node = nodes[current.child];
       __m256 entry_lanes;
+      count.node();
       const int mask = hit_boxes(node, box_lanes, _mm256_set1_ps(best.t), entry_lanes);
       if (mask != 0) {
         alignas(32) float entry[kBvhWidth8];
@@ -60,6 +61,7 @@ Hit intersect_closest_wide8(const Bvh& bvh, const Ray& ray) {
         continue;
       }
     } else {
+      count.leaf(current.count);
       intersect_leaf_closest(groups, current.child, current.count, r, lanes, best);
     }
     // Next waiting node that can still hold a hit no farther than the best one.
@@ -70,8 +72,10 @@ Hit intersect_closest_wide8(const Bvh& bvh, const Ray& ray) {
   }
 }
 
-bool intersect_any_wide8(const Bvh& bvh, const Ray& ray) {
+template <typename Count>
+bool any8(const Bvh& bvh, const Ray& ray, const Count& count) {
   if (bvh.empty()) return false;
+  count.query();
   const RayData r(ray);
   const RayLanes lanes(r);
   const BoxLanes<Avx> box_lanes(r);
@@ -87,17 +91,30 @@ bool intersect_any_wide8(const Bvh& bvh, const Ray& ray) {
     if (current.count == 0) {
       const BvhWideNode8& node = nodes[current.child];
       __m256 entry;
+      count.node();
       const int mask = hit_boxes(node, box_lanes, t_limit, entry);
       if (mask != 0) {
         current = push_children_in_order(node, mask, stack, size);
         continue;
       }
-    } else if (intersect_leaf_any(groups, current.child, current.count, r, lanes)) {
-      return true;
+    } else {
+      count.leaf(current.count);
+      if (intersect_leaf_any(groups, current.child, current.count, r, lanes)) return true;
     }
     if (size == 0) return false;
     current = stack[--size];
   }
+}
+
+}  // namespace
+
+Hit intersect_closest_wide8(const Bvh& bvh, const Ray& ray) { return closest8(bvh, ray, NoCounts{}); }
+bool intersect_any_wide8(const Bvh& bvh, const Ray& ray) { return any8(bvh, ray, NoCounts{}); }
+Hit intersect_closest_wide8(const Bvh& bvh, const Ray& ray, TraversalCounts& counts) {
+  return closest8(bvh, ray, Counting{counts});
+}
+bool intersect_any_wide8(const Bvh& bvh, const Ray& ray, TraversalCounts& counts) {
+  return any8(bvh, ray, Counting{counts});
 }
 
 }  // namespace lueur
