@@ -11,6 +11,7 @@
 #include "core/atomic_file.h"
 #include "core/memory_budget.h"
 #include "render/image_output.h"
+#include "render/indirect_light.h"
 #include "render/render_memory.h"
 #include "render/renderer.h"
 #include "scene/obj_loader.h"
@@ -76,6 +77,7 @@ void write_gl_screenshot(const AppOptions& options, const Film& film, const Trac
     panel.scene_name = traced.scene.name;
     panel.triangles = traced.scene.triangles.size();
     panel.emitters = traced.lights.size();
+    panel.automatic_ao_radius = ambient_occlusion_radius(traced, RenderSettings{});
   }
   Screenshot shot;
   try {

@@ -22,6 +22,7 @@
 #include "display/display_pipeline.h"
 #include "render/camera_controls.h"
 #include "render/image_output.h"
+#include "render/indirect_light.h"
 #include "render/progressive_tracer.h"
 #include "ui/imgui_gl.h"
 #include "ui/mouse_buttons.h"
@@ -140,6 +141,7 @@ class Viewer {
     panel_.scene_name = scene_.traced->scene.name;
     panel_.triangles = scene_.traced->scene.triangles.size();
     panel_.emitters = scene_.traced->lights.size();
+    panel_.automatic_ao_radius = ambient_occlusion_radius(*scene_.traced, RenderSettings{});
     std::string warnings;
     for (const std::string& w : scene_.warnings) warnings += (warnings.empty() ? "" : "; ") + w;
     if (!warnings.empty()) set_message("warning: " + warnings, false);

@@ -64,7 +64,22 @@ void passes_section(PanelModel& m) {
   if (ImGui::Button("Physical (all 1)", ImVec2(full_width, 0.0f))) v.weights = {1.0f, 1.0f, 1.0f, 1.0f};
 }
 
-void sampling_section(ViewState& v, PanelActions& actions) {
+/// The AO radius: automatic (the setting 0, shown as the radius it stands for) or typed in world units.
+void ao_radius_widgets(RenderSettings& r, float automatic_radius) {
+  bool automatic = r.ao_radius <= 0.0f;
+  if (ImGui::Checkbox("Automatic AO radius", &automatic)) r.ao_radius = automatic ? 0.0f : automatic_radius;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("a tenth of the scene's bounding-box diagonal");
+  if (automatic) {
+    ImGui::Text("AO radius %.4g (automatic)", automatic_radius);
+    return;
+  }
+  ImGui::InputFloat("AO radius", &r.ao_radius, 0.0f, 0.0f, "%.4g");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("world units; 0: automatic");
+  if (!(r.ao_radius > 0.0f)) r.ao_radius = 0.0f;  // 0, negative or NaN: back to automatic
+}
+
+void sampling_section(PanelModel& m, PanelActions& actions) {
+  ViewState& v = m.view;
   RenderSettings& r = v.render;
   enum_combo("Light sampling", kLightStrategyNames, r.lights);
   ImGui::SliderInt("L1 shadow rays", &r.l1_rays, 0, 64);
@@ -74,9 +89,7 @@ void sampling_section(ViewState& v, PanelActions& actions) {
   ImGui::SliderFloat("Recompute ratio", &r.recompute_ratio, 0.0f, 1.0f, "%.3f");
   ImGui::Checkbox("Reuse diffuse L1 only", &r.reuse_diffuse_only);
   ImGui::SliderInt("AO rays", &r.ao_rays, 0, 64);
-  ImGui::InputFloat("AO radius", &r.ao_radius, 0.0f, 0.0f, "%.4g");
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("world units; 0: a tenth of the scene's bounding-box diagonal");
-  if (r.ao_radius < 0.0f) r.ao_radius = 0.0f;
+  ao_radius_widgets(r, m.automatic_ao_radius);
   if (ImGui::Checkbox("Smooth normals", &v.smooth_normals)) actions.smooth_normals_changed = true;
   int seed = static_cast<int>(r.seed & 0x7fffffff);
   if (ImGui::InputInt("Seed", &seed) && seed >= 0) r.seed = static_cast<uint64_t>(seed);
@@ -164,7 +177,7 @@ PanelActions draw_panel(PanelModel& m) {
     ImGui::PopStyleColor();
   }
   if (ImGui::CollapsingHeader("Passes", ImGuiTreeNodeFlags_DefaultOpen)) passes_section(m);
-  if (ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) sampling_section(m.view, actions);
+  if (ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) sampling_section(m, actions);
   if (ImGui::CollapsingHeader("View and display", ImGuiTreeNodeFlags_DefaultOpen)) view_section(m.view);
   if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) statistics_section(m);
   if (ImGui::CollapsingHeader("Control", ImGuiTreeNodeFlags_DefaultOpen)) control_section(m, actions);

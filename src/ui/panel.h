@@ -23,8 +23,9 @@ struct PanelModel {
   int film_width = 0, film_height = 0, preview_divisor = 1;
   std::string scene_name;
   size_t triangles = 0, emitters = 0;
-  std::string status;   ///< e.g. "loading bunny.obj: building BVH"; empty when idle
-  std::string message;  ///< the last saved path or error
+  float automatic_ao_radius = 0.0f;  ///< the AO radius used while the setting is 0 (a tenth of the diagonal)
+  std::string status;                ///< e.g. "loading bunny.obj: building BVH"; empty when idle
+  std::string message;               ///< the last saved path or error
   bool message_is_error = false;
   std::string view_path = "lueur-view.json";  ///< the file "Save view" and "Load view" use
   double display_fps = 0.0;
