@@ -550,6 +550,13 @@ TEST(Bvh, CountedQueriesAnswerTheSameAndCountTheirWork) {
   EXPECT_FALSE(intersect_closest(bvh, away, miss).found());
   EXPECT_EQ(miss.nodes, 1u);
   EXPECT_EQ(miss.leaves, 0u);
+
+  // A query on an empty tree is still a query, with no work.
+  TraversalCounts empty;
+  EXPECT_FALSE(intersect_closest(build_bvh({}), away, empty).found());
+  EXPECT_FALSE(intersect_any(build_bvh({}), away, empty));
+  EXPECT_EQ(empty.queries, 2u);
+  EXPECT_EQ(empty.nodes, 0u);
 }
 
 // ---- empty and degenerate inputs -------------------------------------------

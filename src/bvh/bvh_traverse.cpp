@@ -25,8 +25,8 @@ namespace {
 
 template <typename Count>
 Hit closest4(const Bvh& bvh, const Ray& ray, const Count& count) {
-  if (bvh.empty()) return Hit{};
   count.query();
+  if (bvh.empty()) return Hit{};
   const RayData r(ray);
   const RayLanes lanes(r);
   const BoxLanes<Sse> box_lanes(r);
@@ -65,8 +65,8 @@ Hit closest4(const Bvh& bvh, const Ray& ray, const Count& count) {
 
 template <typename Count>
 bool any4(const Bvh& bvh, const Ray& ray, const Count& count) {
-  if (bvh.empty()) return false;
   count.query();
+  if (bvh.empty()) return false;
   const RayData r(ray);
   const RayLanes lanes(r);
   const BoxLanes<Sse> box_lanes(r);

@@ -34,8 +34,8 @@ constexpr uint32_t kStackSize8 = (kBvhWidth8 - 1) * kBvhMaxDepth + 1;
 
 template <typename Count>
 Hit closest8(const Bvh& bvh, const Ray& ray, const Count& count) {
-  if (bvh.empty()) return Hit{};
   count.query();
+  if (bvh.empty()) return Hit{};
   const RayData r(ray);
   const RayLanes lanes(r);
   const BoxLanes<Avx> box_lanes(r);
@@ -74,8 +74,8 @@ Hit closest8(const Bvh& bvh, const Ray& ray, const Count& count) {
 
 template <typename Count>
 bool any8(const Bvh& bvh, const Ray& ray, const Count& count) {
-  if (bvh.empty()) return false;
   count.query();
+  if (bvh.empty()) return false;
   const RayData r(ray);
   const RayLanes lanes(r);
   const BoxLanes<Avx> box_lanes(r);
