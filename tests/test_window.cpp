@@ -127,6 +127,20 @@ TEST_F(Window, SyntheticInputDrivesThePanelAndTheCamera) {
       wait_for([&](const json& s) { return !has_pass(s, "l2") && s["generation"].get<uint64_t>() > generation; }, 10.0))
       << "clicking the L2 checkbox did not turn L2 off";
 
+  // The AO radius: unticking "Automatic" types in the radius automatic stands for; ticking it again gives 0 back.
+  const float automatic = state()["automatic_ao_radius"].get<float>();
+  ASSERT_GT(automatic, 0.0f);
+  ASSERT_EQ(state()["view"]["ao_radius"].get<float>(), 0.0f);
+  const auto [ax, ay] = centre_of("ao-automatic");
+  const std::string click_automatic =
+      "mousemove --window " + window_ + " " + std::to_string(ax) + " " + std::to_string(ay) + " click 1";
+  xdotool(click_automatic);
+  ASSERT_TRUE(wait_for([&](const json& s) { return s["view"]["ao_radius"].get<float>() == automatic; }, 10.0))
+      << "unticking Automatic AO radius did not type in the automatic radius";
+  xdotool(click_automatic);
+  ASSERT_TRUE(wait_for([&](const json& s) { return s["view"]["ao_radius"].get<float>() == 0.0f; }, 10.0))
+      << "ticking Automatic AO radius did not go back to 0";
+
   // A weight slider: the weight changes live and nothing restarts.
   ASSERT_TRUE(wait_for([](const json& s) { return s["frames"].get<int>() >= 1; }, 60.0));
   generation = state()["generation"].get<uint64_t>();

@@ -381,6 +381,7 @@ class Viewer {
     state["paused"] = panel_.paused;
     state["scene"] = panel_.scene_name;
     state["triangles"] = panel_.triangles;
+    state["automatic_ao_radius"] = panel_.automatic_ao_radius;
     state["loading"] = loading_ != nullptr;
     state["message"] = panel_.message;
     state["message_is_error"] = panel_.message_is_error;

@@ -65,9 +65,12 @@ void passes_section(PanelModel& m) {
 }
 
 /// The AO radius: automatic (the setting 0, shown as the radius it stands for) or typed in world units.
-void ao_radius_widgets(RenderSettings& r, float automatic_radius) {
+void ao_radius_widgets(PanelModel& m) {
+  RenderSettings& r = m.view.render;
+  const float automatic_radius = m.automatic_ao_radius;
   bool automatic = r.ao_radius <= 0.0f;
   if (ImGui::Checkbox("Automatic AO radius", &automatic)) r.ao_radius = automatic ? 0.0f : automatic_radius;
+  record_widget(m, "ao-automatic");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("a tenth of the scene's bounding-box diagonal");
   if (automatic) {
     ImGui::Text("AO radius %.4g (automatic)", automatic_radius);
@@ -89,7 +92,7 @@ void sampling_section(PanelModel& m, PanelActions& actions) {
   ImGui::SliderFloat("Recompute ratio", &r.recompute_ratio, 0.0f, 1.0f, "%.3f");
   ImGui::Checkbox("Reuse diffuse L1 only", &r.reuse_diffuse_only);
   ImGui::SliderInt("AO rays", &r.ao_rays, 0, 64);
-  ao_radius_widgets(r, m.automatic_ao_radius);
+  ao_radius_widgets(m);
   if (ImGui::Checkbox("Smooth normals", &v.smooth_normals)) actions.smooth_normals_changed = true;
   int seed = static_cast<int>(r.seed & 0x7fffffff);
   if (ImGui::InputInt("Seed", &seed) && seed >= 0) r.seed = static_cast<uint64_t>(seed);
