@@ -1,11 +1,11 @@
 // The lueur executable end to end: bad input of every kind gives one line naming the problem and exit status 2,
 // with no output file left behind; good input writes PNG, PFM and EXR and prints the path.
-#include "render/image_output.h"
-#include "test_support.h"
-
 #include <gtest/gtest.h>
 
 #include <fstream>
+
+#include "render/image_output.h"
+#include "test_support.h"
 
 namespace lueur {
 namespace {
@@ -38,8 +38,7 @@ class Cli : public ::testing::Test {
 
 using test::shell_quote;
 
-const char* kQuad =
-    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+const char* kQuad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
 
 TEST_F(Cli, RefusesMissingFilesAndDirectories) {
   expect_refused(shell_quote(dir_ + "/nope.obj"), "nope.obj");
@@ -122,8 +121,8 @@ TEST_F(Cli, WritesPngPfmAndExrAndPrintsThePath) {
 TEST_F(Cli, DefaultSceneRendersWithEveryStrategy) {
   for (const char* lights : {"all", "uniform", "area", "power"}) {
     const std::string out = dir_ + "/default-" + lights + ".png";
-    const test::CommandResult r = test::run_lueur(std::string("--headless --size 24x24 --frames 1 --l1-rays 2 --lights ") +
-                                                  lights + " --out '" + out + "'");
+    const test::CommandResult r = test::run_lueur(
+        std::string("--headless --size 24x24 --frames 1 --l1-rays 2 --lights ") + lights + " --out '" + out + "'");
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_TRUE(test::file_exists(out));
   }
