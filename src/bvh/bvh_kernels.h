@@ -1,6 +1,7 @@
-// The ray-triangle and ray-box kernels shared by the traversals of Lueur's BVH: the scalar reference test, and its
-// 4-lane SSE form. Internal to src/bvh: everything has internal linkage, because the AVX2 translation unit compiles
-// the same functions with other instruction-set flags and the two copies must never be merged by the linker.
+// The ray-triangle and ray-box kernels of Lueur's BVH (the scalar reference test and its 4-lane SSE form), and the
+// closest-hit and any-hit traversals built on them, written once for both tree widths. Internal to src/bvh: everything
+// has internal linkage, because the AVX2 translation unit compiles the same functions with other instruction-set flags
+// and the two copies must never be merged by the linker.
 #pragma once
 
 #include <emmintrin.h>  // SSE2 only: x86-64's baseline, so Debug builds without -march compile it too
@@ -175,6 +176,7 @@ struct Sse {
   static constexpr uint32_t kWidth = kBvhWidth;
   static V broadcast(float x) { return _mm_set1_ps(x); }
   static V load(const float* p) { return _mm_load_ps(p); }
+  static void store(float* p, V a) { _mm_store_ps(p, a); }
   static V sub(V a, V b) { return _mm_sub_ps(a, b); }
   static V mul(V a, V b) { return _mm_mul_ps(a, b); }
   static V min(V a, V b) { return _mm_min_ps(a, b); }
@@ -287,8 +289,9 @@ struct StackEntry {
   float entry;
 };
 
-// Each wide node visited pushes at most kBvhWidth - 1 entries, and no path is deeper than kBvhMaxDepth.
-constexpr uint32_t kStackSize = (kBvhWidth - 1) * kBvhMaxDepth + 1;
+// Each node of `Width` children visited pushes at most Width - 1 entries, and no path is deeper than kBvhMaxDepth.
+template <uint32_t Width>
+constexpr uint32_t kStackSize = (Width - 1) * kBvhMaxDepth + 1;
 
 // ---- the pieces both wide traversals (4-wide SSE, 8-wide AVX2) share -------------------------------------------
 
@@ -435,6 +438,99 @@ inline Hit make_hit(const BestHit& best) {
     hit.v = best.v;
   }
   return hit;
+}
+
+// ---- the traversals, for either tree: Sse over `BvhWideNode`s, Avx over `BvhWideNode8`s ------------------------
+
+/// The BVH's wide tree of `Node`s (root at 0).
+template <typename Node>
+const Node* wide_tree(const Bvh& bvh);
+template <>
+inline const BvhWideNode* wide_tree(const Bvh& bvh) {
+  return bvh.wide_nodes.data();
+}
+template <>
+inline const BvhWideNode8* wide_tree(const Bvh& bvh) {
+  return bvh.wide8_nodes.data();
+}
+
+/// Closest hit in the BVH's wide tree of `Node`s, Simd::kWidth children each.
+template <typename Simd, typename Node, typename Count>
+Hit closest_hit(const Bvh& bvh, const Ray& ray, const Count& count) {
+  using V = typename Simd::V;
+  constexpr uint32_t kWidth = Simd::kWidth;
+  count.query();
+  if (bvh.empty()) return Hit{};
+  const RayData r(ray);
+  const RayLanes lanes(r);
+  const BoxLanes<Simd> box_lanes(r);
+  const Node* nodes = wide_tree<Node>(bvh);
+  const BvhTriangleGroup* groups = bvh.groups.data();
+
+  const ChildMemory<Node> memory{nodes, groups};
+  BestHit best{r.tmax};
+  StackEntry stack[kStackSize<kWidth>];
+  uint32_t size = 0;
+  StackEntry current{0, 0, 0.0f};  // the root, an inner node
+
+  for (;;) {
+    if (current.count == 0) {
+      const Node& node = nodes[current.child];
+      V entry_lanes;
+      count.node();
+      const int mask = hit_boxes(node, box_lanes, Simd::broadcast(best.t), entry_lanes);
+      if (mask != 0) {
+        alignas(sizeof(V)) float entry[kWidth];
+        Simd::store(entry, entry_lanes);
+        current = push_children_nearest_first<kWidth>(node, mask, entry, memory, stack, size);
+        continue;
+      }
+    } else {
+      count.leaf(current.count);
+      intersect_leaf_closest(groups, current.child, current.count, r, lanes, best);
+    }
+    // Next waiting node that can still hold a hit no farther than the best one.
+    do {
+      if (size == 0) return make_hit(best);
+      current = stack[--size];
+    } while (current.entry > best.t);
+  }
+}
+
+/// Whether anything in the BVH's wide tree of `Node`s, Simd::kWidth children each, is hit.
+template <typename Simd, typename Node, typename Count>
+bool any_hit(const Bvh& bvh, const Ray& ray, const Count& count) {
+  using V = typename Simd::V;
+  count.query();
+  if (bvh.empty()) return false;
+  const RayData r(ray);
+  const RayLanes lanes(r);
+  const BoxLanes<Simd> box_lanes(r);
+  const V t_limit = Simd::broadcast(r.tmax);
+  const Node* nodes = wide_tree<Node>(bvh);
+  const BvhTriangleGroup* groups = bvh.groups.data();
+
+  // Any hit ends the query, so children are taken in slot order, with no sorting and no distances kept.
+  NodeRef stack[kStackSize<Simd::kWidth>];
+  uint32_t size = 0;
+  NodeRef current{0, 0};
+  for (;;) {
+    if (current.count == 0) {
+      const Node& node = nodes[current.child];
+      V entry;
+      count.node();
+      const int mask = hit_boxes(node, box_lanes, t_limit, entry);
+      if (mask != 0) {
+        current = push_children_in_order(node, mask, stack, size);
+        continue;
+      }
+    } else {
+      count.leaf(current.count);
+      if (intersect_leaf_any(groups, current.child, current.count, r, lanes)) return true;
+    }
+    if (size == 0) return false;
+    current = stack[--size];
+  }
 }
 
 }  // namespace
