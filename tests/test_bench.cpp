@@ -28,12 +28,17 @@ void expect_pair(const nlohmann::json& pair, const std::string& what) {
   }
 }
 
+/// The JSON of a `--smoke` run with `arguments`, which must succeed (else a test failure and null).
+nlohmann::json smoke_run_json(const std::string& arguments) {
+  const std::string path = test::make_temp_dir("bench") + "/bench.json";
+  const test::CommandResult r = run_bench("--smoke " + arguments + " --json " + path);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  if (r.exit_code != 0) return nullptr;
+  return nlohmann::json::parse(test::read_file(path));
+}
+
 TEST(Bench, SmokeRunWritesTheIssuesJsonSchema) {
-  const std::string dir = test::make_temp_dir("bench");
-  const std::string path = dir + "/bench.json";
-  const test::CommandResult r = run_bench("--smoke --json " + path);
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const nlohmann::json j = nlohmann::json::parse(test::read_file(path));
+  const nlohmann::json j = smoke_run_json("");
   ASSERT_TRUE(j.is_object());
   EXPECT_EQ(j.size(), 3u);
 
@@ -77,11 +82,8 @@ TEST(Bench, SmokeRunWritesTheIssuesJsonSchema) {
 }
 
 TEST(Bench, TraversalSectionCountsLueursWorkPerRay) {
-  const std::string dir = test::make_temp_dir("bench-traversal");
-  const std::string path = dir + "/bench.json";
-  const test::CommandResult r = run_bench("--smoke --sections traversal --json " + path);
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const nlohmann::json j = nlohmann::json::parse(test::read_file(path));
+  const nlohmann::json j = smoke_run_json("--sections traversal");
+  ASSERT_TRUE(j.is_object());
   const auto& traversal = j["traversal"];
   ASSERT_TRUE(traversal.is_array());
   ASSERT_EQ(traversal.size(), 6u);  // two scenes x three kinds of rays
