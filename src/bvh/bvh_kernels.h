@@ -289,7 +289,8 @@ struct StackEntry {
   float entry;
 };
 
-// Each node of `Width` children visited pushes at most Width - 1 entries, and no path is deeper than kBvhMaxDepth.
+// Each node of `Width` children visited pushes at most Width - 1 entries (sorting writes its nearest child one entry
+// above them before taking it back), and no inner node is deeper than kBvhMaxDepth - 1.
 template <uint32_t Width>
 constexpr uint32_t kStackSize = (Width - 1) * kBvhMaxDepth + 1;
 
@@ -362,9 +363,9 @@ struct ChildMemory {
 
 /// The children of `node` whose bits are set in `mask`, nearest first: all but the nearest go on the stack,
 /// farthest deepest, so that hits in the nearer ones shrink the best distance and let the farther ones be dropped.
-/// Returns the nearest, to visit next. One or two children (most nodes) take no loop; more are insertion-sorted.
-/// `mask` must not be 0.
-template <size_t Width, typename Node>
+/// Returns the nearest, to visit next. One or two children (most nodes) take no loop; more are insertion-sorted
+/// where they land on the stack, nearest on top, which is then popped. `mask` must not be 0.
+template <typename Node>
 inline StackEntry push_children_nearest_first(const Node& node, int mask, const float* entry,
                                               const ChildMemory<Node>& memory, StackEntry* stack, uint32_t& size) {
   auto next = [&] {
@@ -381,18 +382,18 @@ inline StackEntry push_children_nearest_first(const Node& node, int mask, const 
     stack[size++] = other;
     return nearest;
   }
-  StackEntry hits[Width];
-  hits[0] = nearest;
-  hits[1] = other;
+  StackEntry* sorted = stack + size;  // farthest first
+  sorted[0] = other;
+  sorted[1] = nearest;
   uint32_t n = 2;
   while (mask != 0) {
     const StackEntry e = next();
     uint32_t j = n++;
-    for (; j > 0 && hits[j - 1].entry > e.entry; --j) hits[j] = hits[j - 1];
-    hits[j] = e;
+    for (; j > 0 && sorted[j - 1].entry < e.entry; --j) sorted[j] = sorted[j - 1];
+    sorted[j] = e;
   }
-  for (uint32_t j = n - 1; j > 0; --j) stack[size++] = hits[j];
-  return hits[0];
+  size += n - 1;
+  return sorted[n - 1];
 }
 
 /// The slots of the children set in `mask`, in slot order: the first is returned, the others pushed. For any-hit
@@ -482,7 +483,7 @@ Hit closest_hit(const Bvh& bvh, const Ray& ray, const Count& count) {
       if (mask != 0) {
         alignas(sizeof(V)) float entry[kWidth];
         Simd::store(entry, entry_lanes);
-        current = push_children_nearest_first<kWidth>(node, mask, entry, memory, stack, size);
+        current = push_children_nearest_first(node, mask, entry, memory, stack, size);
         continue;
       }
     } else {
