@@ -11,11 +11,11 @@
 #include "core/atomic_file.h"
 #include "core/memory_budget.h"
 #include "render/image_output.h"
-#include "render/indirect_light.h"
 #include "render/render_memory.h"
 #include "render/renderer.h"
 #include "scene/obj_loader.h"
 #include "ui/headless_screenshot.h"
+#include "ui/panel.h"
 
 namespace lueur {
 namespace {
@@ -74,10 +74,7 @@ void write_gl_screenshot(const AppOptions& options, const Film& film, const Trac
     panel.stats.l2_reused = figures.reused;
     panel.film_width = film.width;
     panel.film_height = film.height;
-    panel.scene_name = traced.scene.name;
-    panel.triangles = traced.scene.triangles.size();
-    panel.emitters = traced.lights.size();
-    panel.automatic_ao_radius = ambient_occlusion_radius(traced, RenderSettings{});
+    describe_scene(panel, traced);
   }
   Screenshot shot;
   try {

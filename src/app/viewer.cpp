@@ -22,7 +22,6 @@
 #include "display/display_pipeline.h"
 #include "render/camera_controls.h"
 #include "render/image_output.h"
-#include "render/indirect_light.h"
 #include "render/progressive_tracer.h"
 #include "ui/imgui_gl.h"
 #include "ui/mouse_buttons.h"
@@ -138,10 +137,7 @@ class Viewer {
     scene_ = std::move(*opened);
     home_camera_ = (loading_is_initial_ && options_.camera) ? panel_.view.camera.value() : scene_.default_view;
     if (!keep_camera) panel_.view.camera = home_camera_;
-    panel_.scene_name = scene_.traced->scene.name;
-    panel_.triangles = scene_.traced->scene.triangles.size();
-    panel_.emitters = scene_.traced->lights.size();
-    panel_.automatic_ao_radius = ambient_occlusion_radius(*scene_.traced, RenderSettings{});
+    describe_scene(panel_, *scene_.traced);
     std::string warnings;
     for (const std::string& w : scene_.warnings) warnings += (warnings.empty() ? "" : "; ") + w;
     if (!warnings.empty()) set_message("warning: " + warnings, false);

@@ -6,6 +6,8 @@
 
 #include <cstdio>
 
+#include "render/indirect_light.h"
+
 namespace lueur {
 namespace {
 
@@ -161,6 +163,13 @@ void files_section(PanelModel& m, PanelActions& actions) {
 }
 
 }  // namespace
+
+void describe_scene(PanelModel& m, const TracedScene& traced) {
+  m.scene_name = traced.scene.name;
+  m.triangles = traced.scene.triangles.size();
+  m.emitters = traced.lights.size();
+  m.automatic_ao_radius = ambient_occlusion_radius(traced, RenderSettings{});
+}
 
 PanelActions draw_panel(PanelModel& m) {
   PanelActions actions;

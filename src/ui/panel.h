@@ -10,6 +10,7 @@
 
 #include "accel/accelerator.h"
 #include "render/progressive_tracer.h"
+#include "render/traced_scene.h"
 #include "render/view_state.h"
 
 namespace lueur {
@@ -42,6 +43,9 @@ struct PanelActions {
   bool smooth_normals_changed = false;
   bool accel_changed = false;
 };
+
+/// Sets the panel's figures about the scene being traced: name, triangle and emitter counts, automatic AO radius.
+void describe_scene(PanelModel& model, const TracedScene& traced);
 
 /// Draws the panel as one ImGui window at the top-left of the display. Call between ImGui::NewFrame and Render.
 PanelActions draw_panel(PanelModel& model);
