@@ -6,6 +6,7 @@
 #include <set>
 
 #include "accel/embree_backend.h"
+#include "bench/bench_throughput.h"
 #include "test_support.h"
 
 namespace lueur {
@@ -35,6 +36,14 @@ nlohmann::json smoke_run_json(const std::string& arguments) {
   EXPECT_EQ(r.exit_code, 0) << r.output;
   if (r.exit_code != 0) return nullptr;
   return nlohmann::json::parse(test::read_file(path));
+}
+
+TEST(Bench, FiguresAreTheMedianRoundSoOneLuckyRoundCannotLiftThem) {
+  EXPECT_DOUBLE_EQ(bench::median({0.88, 0.87, 1.07, 0.89, 0.86}), 0.88);
+  EXPECT_DOUBLE_EQ(bench::median({3.0, 1.0, 2.0}), 2.0);
+  EXPECT_DOUBLE_EQ(bench::median({4.0, 1.0, 3.0, 2.0}), 2.5);
+  EXPECT_DOUBLE_EQ(bench::median({5.0}), 5.0);
+  EXPECT_DOUBLE_EQ(bench::median({}), 0.0);
 }
 
 TEST(Bench, SmokeRunWritesTheIssuesJsonSchema) {

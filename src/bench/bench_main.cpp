@@ -49,7 +49,7 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
   app.add_option("--json", o.json_path, "write every figure to FILE as JSON");
   app.add_option("--scenes", o.scenes_dir, "folder of the shared scenes (default: ../shared/scenes of the source)");
   app.add_option("--only", o.only, "only the scenes whose name contains this text");
-  app.add_option("--rounds", o.rounds, "alternating timing rounds per figure (default 3; the best is kept)")
+  app.add_option("--rounds", o.rounds, "alternating timing rounds per figure (default 5; the median is kept)")
       ->check(CLI::Range(1, 1000));
   app.add_option("--sections", sections,
                  "comma-separated: build,throughput,convergence (default), traversal (nodes per ray)");
@@ -81,7 +81,7 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
   }
   if (o.quick) {
     o.ray_size = 192;
-    o.timing = {0.15, 2};
+    o.timing = {0.1, 3};
     o.convergence = {128, 128, 32, 1.5, 0, 1};
   }
   if (o.smoke) {

@@ -50,6 +50,13 @@ double time_passes(const std::vector<Ray>& rays, ThreadPool& pool, double second
 
 }  // namespace
 
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const size_t mid = values.size() / 2;
+  return values.size() % 2 == 1 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
+}
+
 Throughput measure_throughput(const std::vector<Ray>& rays, Query query, const Bvh& bvh, const EmbreeScene* embree,
                               ThreadPool& pool, const TimingOptions& options) {
   Throughput result;
@@ -59,15 +66,18 @@ Throughput measure_throughput(const std::vector<Ray>& rays, Query query, const B
   const auto embree_closest = [&](const Ray& r) { return embree_intersect_closest_raw(*embree, r).triangle; };
   const auto embree_any = [&](const Ray& r) { return static_cast<uint32_t>(embree_intersect_any(*embree, r)); };
 
-  for (int round = 0; round < options.rounds; ++round) {
-    const double l = query == Query::kClosest ? time_passes(rays, pool, options.seconds_per_round, lueur_closest)
-                                              : time_passes(rays, pool, options.seconds_per_round, lueur_any);
-    result.lueur = std::max(result.lueur, l);
+  std::vector<double> lueur_rounds, embree_rounds;
+  for (int round = 0; round < std::max(1, options.rounds); ++round) {
+    lueur_rounds.push_back(query == Query::kClosest
+                               ? time_passes(rays, pool, options.seconds_per_round, lueur_closest)
+                               : time_passes(rays, pool, options.seconds_per_round, lueur_any));
     if (!embree) continue;
-    const double e = query == Query::kClosest ? time_passes(rays, pool, options.seconds_per_round, embree_closest)
-                                              : time_passes(rays, pool, options.seconds_per_round, embree_any);
-    result.embree = std::max(result.embree.value_or(0.0), e);
+    embree_rounds.push_back(query == Query::kClosest
+                                ? time_passes(rays, pool, options.seconds_per_round, embree_closest)
+                                : time_passes(rays, pool, options.seconds_per_round, embree_any));
   }
+  result.lueur = median(lueur_rounds);
+  if (embree) result.embree = median(embree_rounds);
   if (embree) {
     size_t same = 0;
     for (const Ray& r : rays)
