@@ -68,9 +68,8 @@ Throughput measure_throughput(const std::vector<Ray>& rays, Query query, const B
 
   std::vector<double> lueur_rounds, embree_rounds;
   for (int round = 0; round < std::max(1, options.rounds); ++round) {
-    lueur_rounds.push_back(query == Query::kClosest
-                               ? time_passes(rays, pool, options.seconds_per_round, lueur_closest)
-                               : time_passes(rays, pool, options.seconds_per_round, lueur_any));
+    lueur_rounds.push_back(query == Query::kClosest ? time_passes(rays, pool, options.seconds_per_round, lueur_closest)
+                                                    : time_passes(rays, pool, options.seconds_per_round, lueur_any));
     if (!embree) continue;
     embree_rounds.push_back(query == Query::kClosest
                                 ? time_passes(rays, pool, options.seconds_per_round, embree_closest)
