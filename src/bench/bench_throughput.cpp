@@ -76,8 +76,8 @@ Throughput measure_throughput(const std::vector<Ray>& rays, Query query, const B
                                 : time_passes(rays, pool, options.seconds_per_round, embree_any));
   }
   result.lueur = median(lueur_rounds);
-  if (embree) result.embree = median(embree_rounds);
   if (embree) {
+    result.embree = median(embree_rounds);
     size_t same = 0;
     for (const Ray& r : rays)
       same += query == Query::kClosest ? lueur_closest(r) == embree_closest(r) : lueur_any(r) == embree_any(r);
