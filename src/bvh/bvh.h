@@ -1,4 +1,5 @@
-// Lueur's own bounding volume hierarchy: a binned-SAH BVH2 over triangles with closest-hit and any-hit queries.
+// Lueur's own bounding volume hierarchy: a binned-SAH BVH2 over triangles, improved by reinsertion, with
+// closest-hit and any-hit queries.
 // Depends on core only; knows triangles by their three vertex positions.
 #pragma once
 
@@ -66,7 +67,7 @@ struct alignas(16) BvhTriangleGroup {
 };
 
 struct Bvh {
-  HugePageVector<BvhNode> nodes;  ///< the binned-SAH BVH2; nodes[0] is the root
+  HugePageVector<BvhNode> nodes;  ///< the binned-SAH BVH2 after reinsertion; nodes[0] is the root
   HugePageVector<BvhTriangle> triangles;  ///< reordered once after the build so leaves read them directly
   /// What the queries traverse: the BVH2 collapsed into a 4-wide tree (wide_nodes[0] is the root), or an 8-wide one
   /// (wide8_nodes) when the CPU has AVX2, over leaves of triangle groups. The BVH2 above is kept as the build's
