@@ -435,6 +435,20 @@ Corners make_slivers(std::mt19937& rng) {
   return corners;
 }
 
+/// Long slivers through one point, in every direction, of a few lengths: every box overlaps every other, the case
+/// where reinsertion's search can prune nothing (bvh_reinsert.cpp caps it).
+Corners make_star(std::mt19937& rng, int count) {
+  Corners corners;
+  for (int i = 0; i < count; ++i) {
+    const Vec3 d = random_direction(rng);
+    const Vec3 side = glm::normalize(glm::cross(d, random_direction(rng)));
+    const float length = 3.0f * static_cast<float>(1 + i % 5);
+    const Vec3 centre = 0.05f * random_direction(rng);
+    add_triangle(corners, centre - length * d, centre + length * d, centre + length * d + 0.02f * side);
+  }
+  return corners;
+}
+
 /// A closed UV sphere with shared vertices (pole triangles with two equal vertices included).
 Corners make_sphere(int stacks, int slices, float radius) {
   auto vertex = [&](int i, int j) {
@@ -666,8 +680,9 @@ void run_scene(const SceneCase& scene, uint32_t seed) {
 // Rays compared with brute force per scene. CTest runs each test in its own process, so the total is checked
 // at compile time rather than by counting at run time (run_scene asserts that each scene traced its count).
 constexpr size_t kSoupRays = 25000, kFlatGridRays = 15000, kHeightFieldRays = 15000, kSliverRays = 20000,
-                 kCopiesRays = 10000, kSphereRays = 20000;
-static_assert(kSoupRays + kFlatGridRays + kHeightFieldRays + kSliverRays + kCopiesRays + kSphereRays >= 100000,
+                 kCopiesRays = 10000, kSphereRays = 20000, kStarRays = 5000;
+static_assert(kSoupRays + kFlatGridRays + kHeightFieldRays + kSliverRays + kCopiesRays + kSphereRays + kStarRays >=
+                  100000,
               "the BVH must be checked against brute force on at least 100k rays");
 
 TEST(BvhVersusBruteForce, RandomSoup) {
@@ -710,6 +725,11 @@ TEST(BvhVersusBruteForce, ThousandCopiesOfOneTriangle) {
       ASSERT_EQ(hit.triangle, 0u);
     }
   }
+}
+
+TEST(BvhVersusBruteForce, StarOfOverlappingSlivers) {
+  std::mt19937 rng(12);
+  run_scene({"star", make_star(rng, 3000), kStarRays}, 110);
 }
 
 TEST(BvhVersusBruteForce, ClosedSphere) { run_scene({"sphere", make_sphere(40, 80, 3.0f), kSphereRays}, 106); }

@@ -1,7 +1,7 @@
 // Builds Lueur's BVH: a binned-SAH BVH2 of 32-byte nodes over triangles, split down to leaves of one triangle group
-// and improved by reinsertion (bvh_reinsert.cpp), then lays the triangles out in leaf order. Which subtrees become leaves of the wide tree the queries traverse is
-// the collapse's decision (bvh_wide.cpp). Depends on core (math, ray, box) only; must not know about scenes,
-// materials or rendering.
+// and improved by reinsertion (bvh_reinsert.cpp), then lays the triangles out in leaf order. Which subtrees become
+// leaves of the wide tree the queries traverse is the collapse's decision (bvh_wide.cpp). Depends on core (math, ray,
+// box) only; must not know about scenes, materials or rendering.
 
 #include <algorithm>
 #include <array>

@@ -91,6 +91,12 @@ struct Candidate {
   }
 };
 
+// Nodes one search may look at. Real scenes need few (the bunny 17 on average, the conference room and the 2M
+// spheres about 30, at most 92), but where many long triangles overlap (a star of slivers through one point) nothing
+// can be pruned and each search would walk the whole tree, which makes the optimisation quadratic. The best place
+// found so far is then taken.
+constexpr size_t kMaxSearchVisits = 512;
+
 /// The node whose sibling `n` (detached from the tree) should become: the one where the tree's inner-node area
 /// grows least. Inserting next to x adds a parent of area area(x u n) and grows each ancestor a of x by
 /// area(a u n) - area(a); since every node inside x costs at least area(n) plus what x's box already gains, whole
@@ -102,7 +108,7 @@ uint32_t best_sibling(const Tree& tree, uint32_t n, std::vector<Candidate>& heap
   heap.push_back({own, 0.0f, tree.root});
   uint32_t best = tree.root;
   float best_cost = std::numeric_limits<float>::infinity();
-  while (!heap.empty()) {
+  for (size_t visits = 0; !heap.empty() && visits < kMaxSearchVisits; ++visits) {
     std::pop_heap(heap.begin(), heap.end());
     const Candidate c = heap.back();
     heap.pop_back();
