@@ -1,11 +1,14 @@
-// Collapses Lueur's binned-SAH BVH2 into the wide traversal form (4 or 8 children), as Embree's wide builders
-// shape their trees: each wide node takes the two children of a BVH2 node and keeps opening its largest child of
-// more than one triangle group until it is full; then each child becomes a leaf where the SAH prefers one test of
-// all its triangles to a split, or a wide node of its own. Leaves' triangles are packed four to a group,
+// Collapses Lueur's BVH2 into the wide traversal form (4 or 8 children) at the lowest SAH cost the BVH2 allows
+// (Ylitie, Karras and Laine, "Efficient incoherent ray traversal on GPUs through compressed wide BVHs", 2017): a
+// bottom-up pass finds, for every BVH2 node and every number of slots up to the width, the cheapest way to hand its
+// triangles to a wide node as that many children (leaves of up to kBvhMaxLeafSize triangles, or wide nodes of their
+// own); the wide tree is then read off from the root. Leaves' triangles are packed four to a group,
 // structure-of-arrays. Depends on bvh.h only.
 #include <array>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
+#include <vector>
 
 #include "bvh/bvh.h"
 
@@ -18,10 +21,9 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kTraversalCost = 1.0f;
 constexpr float kIntersectionCost = 1.0f;
 
-/// What the collapse knows of a BVH2 node: the triangles under it, and whether they are best tested as one leaf.
+/// The triangles under a BVH2 node: a contiguous range of the BVH's order.
 struct Subtree {
   uint32_t first = 0, count = 0;
-  bool leaf = false;
 };
 
 float area_of(const BvhNode& n) {
@@ -31,33 +33,102 @@ float area_of(const BvhNode& n) {
   return box.area();
 }
 
-/// One entry per BVH2 node. An inner node is a leaf candidate when it holds at most kBvhMaxLeafSize triangles and
-/// testing them all costs no more than a traversal step plus testing each child's (the SAH's leaf decision, made
-/// here rather than in the build so that a wide node can still open such a node to fill its slots).
-std::vector<Subtree> describe_subtrees(const Bvh& bvh) {
-  std::vector<Subtree> subtrees(bvh.nodes.size());
+/// One entry per BVH2 node.
+HugePageVector<Subtree> describe_subtrees(const Bvh& bvh) {
+  HugePageVector<Subtree> subtrees(bvh.nodes.size());
   // Children sit at higher indices than their parent: a backward pass meets them first.
   for (size_t i = bvh.nodes.size(); i-- > 0;) {
     const BvhNode& node = bvh.nodes[i];
-    Subtree& subtree = subtrees[i];
     if (node.count > 0) {
-      subtree = Subtree{node.first, node.count, true};
+      subtrees[i] = Subtree{node.first, node.count};
       continue;
     }
-    const Subtree& left = subtrees[node.first];
-    const Subtree& right = subtrees[node.first + 1];
-    subtree.first = left.first;  // the build puts the left child's triangles first
-    subtree.count = left.count + right.count;
-    if (subtree.count > kBvhMaxLeafSize) continue;
-    const auto groups = [](uint32_t count) { return static_cast<float>(bvh_group_count(count)); };
-    const float area = area_of(node);
-    const float leaf_cost = kIntersectionCost * groups(subtree.count) * area;
-    const float split_cost =
-        kTraversalCost * area + kIntersectionCost * (groups(left.count) * area_of(bvh.nodes[node.first]) +
-                                                     groups(right.count) * area_of(bvh.nodes[node.first + 1]));
-    subtree.leaf = !(split_cost < leaf_cost);
+    // The build puts the left child's triangles first.
+    subtrees[i] = Subtree{subtrees[node.first].first, subtrees[node.first].count + subtrees[node.first + 1].count};
   }
   return subtrees;
+}
+
+/// How to hand the triangles of one BVH2 node to a wide node of W children, for every number of slots up to W.
+/// cost[i] is the SAH cost of the cheapest way that takes at most i + 1 slots: a leaf costs its area times its
+/// triangle groups, a wide node its area plus what its slots cost, all relative to the root's area.
+template <uint32_t W>
+struct SlotPlan {
+  float cost[W];
+  /// choice[0]: 1 where the node is best one slot as a wide node of its own, 0 as a leaf. choice[i > 0]: 0 where
+  /// i slots do no better than i - 1 (i + 1 slots are then never all used), else how many of the i + 1 slots go to
+  /// the left child (the rest to the right).
+  uint8_t choice[W];
+  /// How the W slots of this node's own wide node are shared between its children (left's share).
+  uint8_t split;
+};
+
+/// The plans of all BVH2 nodes, children before parents (dynamic programming over the tree).
+template <uint32_t W>
+HugePageVector<SlotPlan<W>> plan_slots(const Bvh& bvh, const HugePageVector<Subtree>& subtrees) {
+  constexpr float kNever = std::numeric_limits<float>::infinity();
+  HugePageVector<SlotPlan<W>> plans(bvh.nodes.size());
+  for (size_t n = bvh.nodes.size(); n-- > 0;) {
+    const BvhNode& node = bvh.nodes[n];
+    SlotPlan<W>& plan = plans[n];
+    const float area = area_of(node);
+    const float leaf_cost = kIntersectionCost * static_cast<float>(bvh_group_count(subtrees[n].count)) * area;
+    if (node.count > 0) {  // a BVH2 leaf cannot be opened
+      for (uint32_t i = 0; i < W; ++i) {
+        plan.cost[i] = leaf_cost;
+        plan.choice[i] = 0;
+      }
+      plan.split = 0;
+      continue;
+    }
+    const SlotPlan<W>& left = plans[node.first];
+    const SlotPlan<W>& right = plans[node.first + 1];
+    // shared[j]: the cheapest way to give j slots to the two children together.
+    float shared[W + 1];
+    uint8_t left_share[W + 1];
+    for (uint32_t j = 2; j <= W; ++j) {
+      shared[j] = kNever;
+      left_share[j] = 1;  // kept where every cost is infinite or NaN (coordinates near the float range)
+      for (uint32_t k = 1; k < j; ++k) {
+        const float cost = left.cost[k - 1] + right.cost[j - k - 1];
+        if (cost < shared[j]) {
+          shared[j] = cost;
+          left_share[j] = static_cast<uint8_t>(k);
+        }
+      }
+    }
+    plan.split = left_share[W];
+    const float wide_cost = kTraversalCost * area + shared[W];
+    const bool leaf = subtrees[n].count <= kBvhMaxLeafSize && leaf_cost <= wide_cost;
+    plan.cost[0] = leaf ? leaf_cost : wide_cost;
+    plan.choice[0] = leaf ? 0 : 1;
+    for (uint32_t i = 1; i < W; ++i) {
+      const bool better = shared[i + 1] < plan.cost[i - 1];
+      plan.cost[i] = better ? shared[i + 1] : plan.cost[i - 1];
+      plan.choice[i] = better ? left_share[i + 1] : 0;
+    }
+  }
+  return plans;
+}
+
+/// Whether BVH2 node `n` taken as one slot is a leaf.
+template <uint32_t W>
+bool slot_is_leaf(const Bvh& bvh, const HugePageVector<SlotPlan<W>>& plans, uint32_t n) {
+  return bvh.nodes[n].count > 0 || plans[n].choice[0] == 0;
+}
+
+/// Appends the slots BVH2 node `n` takes when given at most `budget` of them.
+template <uint32_t W>
+void collect_slots(const Bvh& bvh, const HugePageVector<SlotPlan<W>>& plans, uint32_t n, uint32_t budget,
+                   std::array<uint32_t, W>& slots, uint32_t& used) {
+  while (budget >= 2 && plans[n].choice[budget - 1] == 0) --budget;
+  if (budget == 1) {
+    slots[used++] = n;
+    return;
+  }
+  const uint32_t left_share = plans[n].choice[budget - 1];
+  collect_slots<W>(bvh, plans, bvh.nodes[n].first, left_share, slots, used);
+  collect_slots<W>(bvh, plans, bvh.nodes[n].first + 1, budget - left_share, slots, used);
 }
 
 template <typename Node>
@@ -108,7 +179,8 @@ void collapse(Bvh& bvh, HugePageVector<Node>& wide_nodes) {
   wide_nodes.reserve(bvh.nodes.size() / (W / 2) + 1);
   bvh.groups.reserve(bvh.triangles.size() / 2 + 1);
 
-  const std::vector<Subtree> subtrees = describe_subtrees(bvh);
+  const HugePageVector<Subtree> subtrees = describe_subtrees(bvh);
+  const HugePageVector<SlotPlan<W>> plans = plan_slots<W>(bvh, subtrees);
   // Each task fills wide node `wide` from the BVH2 node `source`: an inner node, or a root that is a leaf.
   struct Task {
     uint32_t wide, source;
@@ -118,36 +190,20 @@ void collapse(Bvh& bvh, HugePageVector<Node>& wide_nodes) {
   while (!tasks.empty()) {
     const Task task = tasks.back();
     tasks.pop_back();
-    const BvhNode& source = bvh.nodes[task.source];
     std::array<uint32_t, W> slots{};
     uint32_t used = 0;
-    if (subtrees[task.source].leaf) {
+    if (slot_is_leaf<W>(bvh, plans, task.source)) {
       slots[used++] = task.source;  // the whole BVH2 is one leaf: the root holds it as its only child
     } else {
-      slots[used++] = source.first;
-      slots[used++] = source.first + 1;
-      // Open the inner child of largest area, the one a ray is most likely to enter, until the node is full.
-      while (used < W) {
-        int best = -1;
-        float best_area = -1.0f;
-        for (uint32_t k = 0; k < used; ++k) {
-          const BvhNode& n = bvh.nodes[slots[k]];
-          if (n.count > 0) continue;
-          if (const float area = area_of(n); area > best_area) {
-            best_area = area;
-            best = static_cast<int>(k);
-          }
-        }
-        if (best < 0) break;
-        const uint32_t opened = bvh.nodes[slots[static_cast<uint32_t>(best)]].first;
-        slots[static_cast<uint32_t>(best)] = opened;
-        slots[used++] = opened + 1;
-      }
+      const BvhNode& source = bvh.nodes[task.source];
+      const uint32_t left_share = plans[task.source].split;
+      collect_slots<W>(bvh, plans, source.first, left_share, slots, used);
+      collect_slots<W>(bvh, plans, source.first + 1, W - left_share, slots, used);
     }
     for (uint32_t k = 0; k < used; ++k) {
       Node& node = wide_nodes[task.wide];  // taken again each time: the push below may move it
       set_slot_box(node, k, bvh.nodes[slots[k]]);
-      if (subtrees[slots[k]].leaf) {
+      if (slot_is_leaf<W>(bvh, plans, slots[k])) {
         node.child[k] = pack_leaf(bvh, subtrees[slots[k]], node.count[k]);
         continue;
       }
