@@ -42,7 +42,8 @@ struct BuildFigures {
   std::optional<double> embree_bytes;
 };
 
-/// Builds both back-ends `repeats` times and keeps the fastest build of each; `bvh` and `embree` receive the last.
+/// Builds both back-ends `repeats` times, alternating, and keeps the fastest build of each; `bvh` and `embree`
+/// receive the last.
 BuildFigures measure_builds(const std::vector<Vec3>& corners, int repeats, Bvh& bvh,
                             std::shared_ptr<const EmbreeScene>& embree);
 
