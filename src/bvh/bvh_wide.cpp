@@ -51,13 +51,13 @@ HugePageVector<Subtree> describe_subtrees(const Bvh& bvh) {
 
 /// How to hand the triangles of one BVH2 node to a wide node of W children, for every number of slots up to W.
 /// cost[i] is the SAH cost of the cheapest way that takes at most i + 1 slots: a leaf costs its area times its
-/// triangle groups, a wide node its area plus what its slots cost, all relative to the root's area.
+/// triangle groups, a wide node its area plus what its slots cost (plain areas: only comparisons matter).
 template <uint32_t W>
 struct SlotPlan {
   float cost[W];
   /// choice[0]: 1 where the node is best one slot as a wide node of its own, 0 as a leaf. choice[i > 0]: 0 where
-  /// i slots do no better than i - 1 (i + 1 slots are then never all used), else how many of the i + 1 slots go to
-  /// the left child (the rest to the right).
+  /// i + 1 slots do no better than i (the plan for i slots is used), else how many of the i + 1 slots go to the
+  /// left child (the rest to the right).
   uint8_t choice[W];
   /// How the W slots of this node's own wide node are shared between its children (left's share).
   uint8_t split;
