@@ -20,6 +20,36 @@ BvhNode inner(uint32_t first, const BvhNode& a, const BvhNode& b) {
   return BvhNode{glm::min(a.lo, b.lo), first, glm::max(a.hi, b.hi), 0};
 }
 
+/// The BVH2 ((a, b), (c, d)) over four leaves, in the build's form.
+HugePageVector<BvhNode> two_pairs(const BvhNode& a, const BvhNode& b, const BvhNode& c, const BvhNode& d) {
+  HugePageVector<BvhNode> nodes(7);
+  nodes[3] = a;
+  nodes[4] = b;
+  nodes[5] = c;
+  nodes[6] = d;
+  nodes[1] = inner(3, a, b);
+  nodes[2] = inner(5, c, d);
+  nodes[0] = inner(1, nodes[1], nodes[2]);
+  return nodes;
+}
+
+/// Checks that reinsertion left the tree as it was: every node unchanged, and the leaves' ranges in their old order.
+void expect_left_as_built(const HugePageVector<BvhNode>& before, const HugePageVector<BvhNode>& after,
+                          const std::vector<LeafRange>& ranges) {
+  ASSERT_EQ(after.size(), before.size());
+  for (size_t i = 0; i < after.size(); ++i) {
+    EXPECT_EQ(after[i].lo, before[i].lo);
+    EXPECT_EQ(after[i].hi, before[i].hi);
+    EXPECT_EQ(after[i].first, before[i].first);
+    EXPECT_EQ(after[i].count, before[i].count);
+  }
+  uint32_t next = 0;
+  for (const LeafRange& r : ranges) {
+    EXPECT_EQ(r.first, next);
+    next += r.count;
+  }
+}
+
 double inner_area(const HugePageVector<BvhNode>& nodes) {
   double sum = 0.0;
   for (const BvhNode& n : nodes) {
@@ -93,14 +123,7 @@ TEST(BvhReinsert, PairsTheLeavesThatBelongTogether) {
   const BvhNode a = leaf(Vec3(0.0f), one, 0, 1), b = leaf(Vec3(10.0f, 0.0f, 0.0f), Vec3(11.0f, 1.0f, 1.0f), 1, 1);
   const BvhNode c = leaf(Vec3(0.2f), Vec3(1.2f), 2, 1),
                 d = leaf(Vec3(10.2f, 0.2f, 0.2f), Vec3(11.2f, 1.2f, 1.2f), 3, 1);
-  HugePageVector<BvhNode> nodes(7);
-  nodes[3] = a;
-  nodes[4] = b;
-  nodes[5] = c;
-  nodes[6] = d;
-  nodes[1] = inner(3, a, b);
-  nodes[2] = inner(5, c, d);
-  nodes[0] = inner(1, nodes[1], nodes[2]);
+  HugePageVector<BvhNode> nodes = two_pairs(a, b, c, d);
   const HugePageVector<BvhNode> before = nodes;
 
   std::vector<LeafRange> ranges;
@@ -134,15 +157,7 @@ TEST(BvhReinsert, LeavesAGoodTreeAsItIs) {
   std::vector<LeafRange> ranges;
   reinsert_subtrees(nodes, ranges, ReinsertSettings{3, 1.0f});
   ASSERT_EQ(ranges.size(), 3u);
-  EXPECT_EQ(ranges[0].first, 0u);
-  EXPECT_EQ(ranges[1].first, 3u);
-  EXPECT_EQ(ranges[2].first, 5u);
-  for (size_t i = 0; i < nodes.size(); ++i) {
-    EXPECT_EQ(nodes[i].lo, before[i].lo);
-    EXPECT_EQ(nodes[i].hi, before[i].hi);
-    EXPECT_EQ(nodes[i].first, before[i].first);
-    EXPECT_EQ(nodes[i].count, before[i].count);
-  }
+  expect_left_as_built(before, nodes, ranges);
 }
 
 TEST(BvhReinsert, LeavesTreesWithoutFiniteAreasAlone) {
@@ -150,20 +165,12 @@ TEST(BvhReinsert, LeavesTreesWithoutFiniteAreasAlone) {
   const float big = 3.0e38f;
   const BvhNode a = leaf(Vec3(-big), Vec3(-big + 1.0e32f), 0, 1), b = leaf(Vec3(0.0f), Vec3(1.0f), 1, 1);
   const BvhNode c = leaf(Vec3(big - 1.0e32f), Vec3(big), 2, 1), d = leaf(Vec3(0.5f), Vec3(1.5f), 3, 1);
-  HugePageVector<BvhNode> nodes(7);
-  nodes[3] = a;
-  nodes[4] = b;
-  nodes[5] = c;
-  nodes[6] = d;
-  nodes[1] = inner(3, a, b);
-  nodes[2] = inner(5, c, d);
-  nodes[0] = inner(1, nodes[1], nodes[2]);
+  HugePageVector<BvhNode> nodes = two_pairs(a, b, c, d);
   const HugePageVector<BvhNode> before = nodes;
   std::vector<LeafRange> ranges;
   reinsert_subtrees(nodes, ranges, ReinsertSettings{2, 1.0f});
   ASSERT_EQ(ranges.size(), 4u);
-  for (uint32_t k = 0; k < 4; ++k) EXPECT_EQ(ranges[k].first, k);
-  for (size_t i = 0; i < nodes.size(); ++i) EXPECT_EQ(nodes[i].first, before[i].first);
+  expect_left_as_built(before, nodes, ranges);
 }
 
 /// A BVH2 over `count` random boxes split at random (the worst kind of top-down build), in the build's form.

@@ -24,10 +24,7 @@ struct Node {
   bool leaf() const { return count > 0; }
 };
 
-float area_of(const Vec3& lo, const Vec3& hi) {
-  const Vec3 e = hi - lo;
-  return 2.0f * (e.x * e.y + e.y * e.z + e.z * e.x);
-}
+float area_of(const Vec3& lo, const Vec3& hi) { return Box3{lo, hi}.area(); }
 
 float area_of(const Node& n) { return area_of(n.lo, n.hi); }
 
