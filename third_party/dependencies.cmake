@@ -27,7 +27,7 @@ target_link_libraries(lueur::stb INTERFACE PkgConfig::STB)
 # ---- display and UI (the window, off-screen screenshots, the panel) --------
 find_package(nlohmann_json 3 CONFIG REQUIRED)             # nlohmann-json3-dev
 find_package(glfw3 3.3 CONFIG REQUIRED)                   # libglfw3-dev
-find_package(OpenGL REQUIRED COMPONENTS OpenGL EGL)       # libgl-dev, libegl-dev (+ Mesa's libegl-mesa0)
+find_package(OpenGL REQUIRED COMPONENTS OpenGL EGL)       # libgl-dev, libopengl-dev, libegl-dev (+ Mesa's libegl-mesa0)
 pkg_check_modules(OSMESA REQUIRED IMPORTED_TARGET osmesa) # libosmesa6-dev
 pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)   # libimgui-dev
 
