@@ -128,6 +128,49 @@ TEST_F(Cli, DefaultSceneRendersWithEveryStrategy) {
   }
 }
 
+// An option given twice takes its last value: the image is byte for byte the one the last values alone give, and
+// only the last --out is written.
+TEST_F(Cli, RepeatedOptionsTakeTheirLastValue) {
+  const std::string first = dir_ + "/first.pfm", last = dir_ + "/last.pfm", alone = dir_ + "/alone.pfm";
+  const test::CommandResult repeated = test::run_lueur(
+      "--headless --headless --size 8x8 --size 12x10 --frames 3 --frames 1 --lights uniform --lights area "
+      "--passes ao --passes l1,l2 --seed 5 --seed 9 --out '" + first + "' --out '" + last + "'");
+  ASSERT_EQ(repeated.exit_code, 0) << repeated.output;
+  EXPECT_FALSE(test::file_exists(first));
+  const test::CommandResult single =
+      test::run_lueur("--headless --size 12x10 --frames 1 --lights area --passes l1,l2 --seed 9 --out '" + alone + "'");
+  ASSERT_EQ(single.exit_code, 0) << single.output;
+  const Image image = decode_pfm(test::read_file(last));
+  EXPECT_EQ(image.width, 12);
+  EXPECT_EQ(image.height, 10);
+  EXPECT_EQ(test::read_file(last), test::read_file(alone));
+}
+
+// scripts/run.sh passes its own --out (and --gl auto) before the user's options: the user's win. With no display
+// it renders headless and prints the path of the file it wrote.
+TEST_F(Cli, RunScriptTakesTheUsersOptions) {
+  const std::string out = dir_ + "/mine.png";
+  const std::string build = std::string(LUEUR_EXECUTABLE).substr(0, std::string(LUEUR_EXECUTABLE).rfind('/'));
+  const test::CommandResult r = test::run_program(
+      std::string(LUEUR_SOURCE_DIR) + "/scripts/run.sh",
+      "--out " + shell_quote(out) + " --gl none --size 8x6 --frames 1 --l1-rays 1 --l2-rays 1",
+      "env -u DISPLAY -u WAYLAND_DISPLAY LUEUR_BUILD=" + shell_quote(build));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_TRUE(test::file_exists(out)) << r.output;
+  EXPECT_NE(r.output.find(out), std::string::npos) << r.output;
+  const std::string png = test::read_file(out);
+  ASSERT_GT(png.size(), 24u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  // The width and height of the IHDR chunk, big-endian.
+  const auto be32 = [&](size_t at) {
+    uint32_t v = 0;
+    for (size_t i = 0; i < 4; ++i) v = (v << 8) | static_cast<unsigned char>(png[at + i]);
+    return v;
+  };
+  EXPECT_EQ(be32(16), 8u);
+  EXPECT_EQ(be32(20), 6u);
+}
+
 TEST_F(Cli, ExportedDefaultSceneMatchesTheCommittedAsset) {
   const std::string out = dir_ + "/cornell-apple.obj";
   const test::CommandResult r = test::run_lueur("--export-default-scene '" + out + "'");

@@ -173,6 +173,9 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv) {
   AppOptions o;
   CLI::App app{"Lueur: a progressive CPU ray tracer of direct (L1) and one-bounce indirect (L2) light", "lueur"};
   app.set_version_flag("--version", "lueur 0.1.0");
+  // An option given twice takes its last value, as in most command-line tools (scripts/run.sh passes its own --out
+  // before the user's).
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   std::string size, camera, up, passes, weights, lights, smooth, tonemap, reuse, view, gl, accel;
   app.add_option("scene", o.scene_path, "OBJ scene (default: the embedded Cornell box with an apple)");
   app.add_flag("--headless", o.headless, "render to a file instead of opening a window");
