@@ -19,10 +19,10 @@ class Cli : public ::testing::Test {
     return path;
   }
   /// Runs a headless render expected to fail; checks status 2, a single error line mentioning `needle`, and that
-  /// no output was written.
+  /// no output was written. The arguments come last: an option given twice takes its last value.
   void expect_refused(const std::string& arguments, const std::string& needle) {
     const std::string out = dir_ + "/out.png";
-    const test::CommandResult r = test::run_lueur(arguments + " --headless --out '" + out + "' --size 8x8 --frames 1");
+    const test::CommandResult r = test::run_lueur("--headless --out '" + out + "' --size 8x8 --frames 1 " + arguments);
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find("lueur: error: "), std::string::npos) << r.output;
     EXPECT_NE(r.output.find(needle), std::string::npos) << "expected '" << needle << "' in: " << r.output;
