@@ -28,8 +28,8 @@ Film random_film(int width, int height, uint64_t frames, uint32_t seed) {
   return film;
 }
 
-std::vector<uint8_t> cpu_reference(const Film& film, const DisplayView& view) {
-  return tonemap_to_rgb8(shown_image(film, view.enabled, view.weights, view.layer), view.display);
+std::vector<uint8_t> cpu_reference(const Film& film, const Settings& view) {
+  return tonemap_to_rgb8(shown_image(film, view.render.enabled, view.weights, view.layer), view.display);
 }
 
 /// Largest difference per channel between two RGB8 images of the same size.
@@ -44,24 +44,24 @@ class GlDisplay : public ::testing::TestWithParam<HeadlessGl> {};
 
 TEST_P(GlDisplay, EqualsTheCpuToneMappingWithinOneLevel) {
   const Film film = random_film(67, 41, 13, 5);  // odd sizes catch row-order and alignment mistakes
-  std::vector<DisplayView> views;
+  std::vector<Settings> views;
   for (int t = 0; t < 3; ++t)
     for (float exposure : {-2.0f, 0.0f, 1.5f}) {
-      DisplayView v;
+      Settings v;
       v.display.tonemap = static_cast<ToneMap>(t);
       v.display.exposure = exposure;
       views.push_back(v);
     }
-  DisplayView weighted;
-  weighted.enabled = {true, false, true, true};
+  Settings weighted;
+  weighted.render.enabled = {true, false, true, true};
   weighted.weights = {0.3f, 5.0f, 1.7f, 0.25f};
   views.push_back(weighted);
-  DisplayView single;
+  Settings single;
   single.layer = Layer::kReuseFraction;
   single.display.tonemap = ToneMap::kReinhard;
   views.push_back(single);
 
-  for (const DisplayView& view : views) {
+  for (const Settings& view : views) {
     Screenshot shot;
     try {
       shot = render_headless_screenshot(GetParam(), film, view);
@@ -79,7 +79,7 @@ TEST_P(GlDisplay, EqualsTheCpuToneMappingWithinOneLevel) {
 
 TEST_P(GlDisplay, AnEmptyFilmIsBlack) {
   Film film = random_film(8, 8, 0, 1);
-  const Screenshot shot = render_headless_screenshot(GetParam(), film, DisplayView{});
+  const Screenshot shot = render_headless_screenshot(GetParam(), film, Settings{});
   for (uint8_t v : shot.rgb) ASSERT_EQ(v, 0);
 }
 
@@ -92,8 +92,8 @@ TEST(GlDisplay, ThePanelChangesTheImageOnlyWhereItIs) {
   const Film film = random_film(480, 420, 3, 9);
   PanelModel panel;
   panel.scene_name = "random film";
-  const Screenshot plain = render_headless_screenshot(HeadlessGl::kEgl, film, DisplayView{});
-  const Screenshot with_ui = render_headless_screenshot(HeadlessGl::kEgl, film, DisplayView{}, &panel);
+  const Screenshot plain = render_headless_screenshot(HeadlessGl::kEgl, film, Settings{});
+  const Screenshot with_ui = render_headless_screenshot(HeadlessGl::kEgl, film, Settings{}, &panel);
   ASSERT_EQ(plain.rgb.size(), with_ui.rgb.size());
   const auto differs = [&](int x0, int y0, int x1, int y1) {
     int count = 0;

@@ -5,7 +5,7 @@
 #include <fstream>
 
 #include "render/camera_controls.h"
-#include "render/view_state.h"
+#include "settings/view_file.h"
 #include "test_support.h"
 
 namespace lueur {
@@ -13,8 +13,8 @@ namespace {
 
 CameraSpec test_camera() { return CameraSpec{Vec3(1.0f, 2.0f, 5.0f), Vec3(0.0f, 0.5f, 0.0f), Vec3(0, 1, 0), 40.0f}; }
 
-TEST(ViewState, RoundTripsThroughJson) {
-  ViewState v;
+TEST(ViewFile, RoundTripsThroughJson) {
+  Settings v;
   v.camera = test_camera();
   v.render.width = 123;
   v.render.height = 45;
@@ -24,6 +24,8 @@ TEST(ViewState, RoundTripsThroughJson) {
   v.render.seed = 18446744073709551557ull;  // beyond 2^53: must survive JSON exactly
   v.weights = {0.5f, 0.25f, 2.0f, 1.5f};
   v.layer = Layer::kL2Reused;
+  v.accel = AccelKind::kEmbree;
+  v.up = Vec3(0.0f, 0.0f, 1.0f);
   v.display = {1.25f, ToneMap::kAces};
   v.smooth_normals = false;
   v.frame_limit = 100;
@@ -31,7 +33,7 @@ TEST(ViewState, RoundTripsThroughJson) {
   EXPECT_EQ(view_from_json(view_to_json(v)), v);
 }
 
-TEST(ViewState, RefusesBadFilesNamingTheField) {
+TEST(ViewFile, RefusesBadFilesNamingTheField) {
   const auto message = [](const std::string& text) {
     try {
       view_from_json(text);
@@ -51,9 +53,9 @@ TEST(ViewState, RefusesBadFilesNamingTheField) {
   EXPECT_NE(message("{\"lueur_view\":1, \"exposure\": 99}").find("exposure"), std::string::npos);
 }
 
-TEST(ViewState, AViewFileRendersTheSameImageAsTheOptionsItHolds) {
+TEST(ViewFile, AViewFileRendersTheSameImageAsTheOptionsItHolds) {
   const std::string dir = test::make_temp_dir("view-file");
-  ViewState v;
+  Settings v;
   v.camera = CameraSpec{Vec3(278, 273, -600), Vec3(300, 200, 0), Vec3(0, 1, 0), 45.0f};
   v.render.width = 40;
   v.render.height = 30;

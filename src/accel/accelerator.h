@@ -5,9 +5,9 @@
 #include <memory>
 #include <vector>
 
+#include "accel/accel_kind.h"
 #include "accel/embree_backend.h"
 #include "bvh/bvh.h"
-#include "render/settings.h"
 
 namespace lueur {
 

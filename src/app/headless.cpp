@@ -59,10 +59,9 @@ struct RunFigures {
 /// The PNG through the display shaders of an off-screen EGL or OSMesa context, with the panel if asked.
 void write_gl_screenshot(const AppOptions& options, const Film& film, const TracedScene& traced,
                          const RunFigures& figures) {
-  const DisplayView view = display_view_of(view_from_options(options));
   PanelModel panel;
   if (options.ui) {
-    panel.view = view_from_options(options);
+    panel.settings = options.settings;
     panel.paused = true;
     panel.stats.frames = film.frames;
     panel.stats.seconds = figures.seconds;
@@ -78,48 +77,48 @@ void write_gl_screenshot(const AppOptions& options, const Film& film, const Trac
   }
   Screenshot shot;
   try {
-    shot = render_headless_screenshot(options.gl, film, view, options.ui ? &panel : nullptr);
+    shot = render_headless_screenshot(options.gl, film, options.settings, options.ui ? &panel : nullptr);
   } catch (const std::runtime_error& e) {
     throw IoError(std::string("--gl ") + std::string(enum_name(kHeadlessGlNames, options.gl)) + ": " + e.what());
   }
   std::fprintf(stderr, "lueur: display path: %s\n", shot.context.c_str());
-  write_file_atomically(options.out_path,
-                        encode_png_rgb8(shot.rgb, shot.width, shot.height, describe_options(options)));
+  write_file_atomically(options.out_path, encode_png_rgb8(shot.rgb, shot.width, shot.height,
+                                                          describe_options(options.scene_path, options.settings)));
 }
 
 }  // namespace
 
 int run_headless(const AppOptions& options) {
   check_output_path(options.out_path);
-  const RenderSettings& settings = options.render;
+  const RenderSettings& settings = options.settings.render;
+  const int frames = options.settings.frames;
   const MemoryBudget scene_memory = reserve_render_memory(settings);
   const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
   const OpenedScene opened =
-      open_scene(options.scene_path, options.smooth_normals, aspect, scene_memory, options.accel);
+      open_scene(options.scene_path, options.settings.smooth_normals, aspect, scene_memory, options.settings.accel);
   for (const std::string& w : opened.warnings) std::fprintf(stderr, "lueur: warning: %s\n", w.c_str());
 
-  CameraSpec view = options.camera.value_or(opened.default_view);
-  if (options.up) view.up = *options.up;
-  const Camera camera = make_camera(view, settings.width, settings.height);
+  const Camera camera = make_camera(camera_of(options.settings, opened.default_view), settings.width, settings.height);
 
   Film film;
   film.reset(settings);
-  if (options.view && !film.has(*options.view))
-    throw UsageError("--view " + std::string(enum_name(kLayerNames, *options.view)) +
+  const std::optional<Layer> layer = options.settings.layer;
+  if (layer && !film.has(*layer))
+    throw UsageError("--view " + std::string(enum_name(kLayerNames, *layer)) +
                      ": that layer is not rendered with these --passes/--reuse settings");
   ThreadPool pool(options.threads);
   const TracedScene& traced = *opened.traced;
   std::fprintf(stderr, "lueur: %s, %zu triangles, %zu emitters, %dx%d, %d frames, %d threads, accel %s\n",
                traced.scene.name.c_str(), traced.scene.triangles.size(), traced.lights.size(), settings.width,
-               settings.height, options.frames, pool.thread_count(),
-               std::string(enum_name(kAccelKindNames, options.accel)).c_str());
+               settings.height, frames, pool.thread_count(),
+               std::string(enum_name(kAccelKindNames, options.settings.accel)).c_str());
 
   const Clock::time_point start = Clock::now();
   Clock::time_point last_progress = start;
   uint64_t rays = 0, bounce_hits = 0, reused = 0, dropped = 0;
   double l2_seconds = 0.0;
   const bool tty = ::isatty(STDERR_FILENO);
-  for (int f = 0; f < options.frames; ++f) {
+  for (int f = 0; f < frames; ++f) {
     const FrameResult frame = render_frame(traced, camera, settings, film, pool);
     rays += frame.rays;
     bounce_hits += frame.l2_bounce_hits;
@@ -127,11 +126,11 @@ int run_headless(const AppOptions& options) {
     dropped += frame.dropped_samples;
     l2_seconds += frame.l2_seconds;
     const double elapsed = seconds_since(start);
-    if (f + 1 == options.frames || std::chrono::duration<double>(Clock::now() - last_progress).count() > 0.5) {
+    if (f + 1 == frames || std::chrono::duration<double>(Clock::now() - last_progress).count() > 0.5) {
       last_progress = Clock::now();
-      const double left = elapsed / (f + 1) * (options.frames - f - 1);
-      std::fprintf(stderr, "%slueur: frame %d/%d, %.1f s elapsed, about %.1f s left%s", tty ? "\r" : "", f + 1,
-                   options.frames, elapsed, left, tty ? "   " : "\n");
+      const double left = elapsed / (f + 1) * (frames - f - 1);
+      std::fprintf(stderr, "%slueur: frame %d/%d, %.1f s elapsed, about %.1f s left%s", tty ? "\r" : "", f + 1, frames,
+                   elapsed, left, tty ? "   " : "\n");
     }
   }
   const double elapsed = seconds_since(start);
@@ -146,11 +145,12 @@ int run_headless(const AppOptions& options) {
     write_gl_screenshot(options, film, traced, {elapsed, rays, l2_seconds, bounce_hits, reused});
   } else {
     // The EXR holds every rendered layer; PNG and PFM show the combined image or the chosen --view.
-    write_image(options.out_path, shown_image(film, settings.enabled, options.weights, options.view),
-                film_layer_images(film), options.display, describe_options(options));
+    write_image(options.out_path, shown_image(film, settings.enabled, options.settings.weights, layer),
+                film_layer_images(film), options.settings.display,
+                describe_options(options.scene_path, options.settings));
   }
 
-  std::fprintf(stderr, "lueur: %d frames in %.2f s, %.1f M rays traced (%.2f Mrays/s)\n", options.frames, elapsed,
+  std::fprintf(stderr, "lueur: %d frames in %.2f s, %.1f M rays traced (%.2f Mrays/s)\n", frames, elapsed,
                static_cast<double>(rays) * 1e-6, elapsed > 0.0 ? static_cast<double>(rays) * 1e-6 / elapsed : 0.0);
   if (settings.pass_enabled(Pass::kL2))
     std::fprintf(stderr, "lueur: L2 took %.2f s; %.1f%% of its %.1f M bounce hits reused L1 (--reuse %s)\n", l2_seconds,

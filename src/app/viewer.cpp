@@ -23,6 +23,8 @@
 #include "render/camera_controls.h"
 #include "render/image_output.h"
 #include "render/progressive_tracer.h"
+#include "settings/setting_table.h"
+#include "settings/view_file.h"
 #include "ui/imgui_gl.h"
 #include "ui/mouse_buttons.h"
 #include "ui/panel.h"
@@ -65,10 +67,9 @@ class Viewer {
  public:
   Viewer(const AppOptions& options, GLFWwindow* window, const GlApi& gl)
       : options_(options), window_(window), gl_(gl), pipeline_(gl), tracer_(options.threads) {
-    panel_.view = view_from_options(options);
+    panel_.settings = options.settings;
     panel_.paused = false;
-    panel_.accel = options.accel;
-    tracer_.set_frame_limit(panel_.view.frame_limit);
+    tracer_.set_frame_limit(panel_.settings.frame_limit);
     start_loading(options.scene_path, true);
   }
 
@@ -91,6 +92,7 @@ class Viewer {
       const PanelActions actions = draw_panel(panel_);
       handle_input();
       handle_actions(actions);
+      reload_if_needed();
       apply_to_tracer();
       draw();
       ImGui::Render();
@@ -117,8 +119,9 @@ class Viewer {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
     const float aspect = w > 0 && h > 0 ? static_cast<float>(w) / static_cast<float>(h) : 1.0f;
-    loading_ = std::make_unique<SceneLoading>(path, panel_.view.smooth_normals, aspect, panel_.accel);
+    loading_ = std::make_unique<SceneLoading>(path, panel_.settings.smooth_normals, aspect, panel_.settings.accel);
     loading_is_initial_ = initial;
+    scene_settings_ = panel_.settings;
   }
 
   void finish_loading() {
@@ -130,13 +133,15 @@ class Viewer {
       loading_.reset();
       return;
     }
-    const bool keep_camera = reloading_same_scene_ || (loading_is_initial_ && panel_.view.camera.has_value());
+    const bool keep_camera = reloading_same_scene_;
     scene_path_ = loading_->path();
     loading_.reset();
     reloading_same_scene_ = false;
     scene_ = std::move(*opened);
-    home_camera_ = (loading_is_initial_ && options_.camera) ? panel_.view.camera.value() : scene_.default_view;
-    if (!keep_camera) panel_.view.camera = home_camera_;
+    // The first scene starts from the camera the options gave, if any; a new scene from its own default view.
+    home_camera_ = loading_is_initial_ ? camera_of(options_.settings, scene_.default_view) : scene_.default_view;
+    if (!keep_camera) panel_.settings.camera = home_camera_;
+    panel_.settings.up.reset();  // the window moves one camera, its up vector included
     describe_scene(panel_, *scene_.traced);
     std::string warnings;
     for (const std::string& w : scene_.warnings) warnings += (warnings.empty() ? "" : "; ") + w;
@@ -162,11 +167,11 @@ class Viewer {
         start_loading(path, false);
     }
     events.dropped.clear();
-    if (!panel_.view.camera) {
+    if (!panel_.settings.camera) {
       events.scroll = 0.0;
       return;
     }
-    CameraSpec& camera = *panel_.view.camera;
+    CameraSpec& camera = *panel_.settings.camera;
     const ImGuiIO& io = ImGui::GetIO();
     int width = 0, height = 0;
     glfwGetWindowSize(window_, &width, &height);
@@ -226,38 +231,46 @@ class Viewer {
     if (a.save_exr) save_image(".exr");
     if (a.save_view) {
       try {
-        ViewState view = panel_.view;
-        view.frames = shown_.film.frames;
-        save_view_file(panel_.view_path, view);
+        save_view_file(panel_.view_path, settings_with_shown_frames());
         set_message("saved view " + panel_.view_path, false);
       } catch (const std::exception& e) {
         set_message(e.what(), true);
       }
     }
     if (a.load_view) load_view(panel_.view_path);
-    if (scene_.traced && a.frame_scene && panel_.view.camera)
-      panel_.view.camera = frame_bounds(*panel_.view.camera, scene_.traced->scene.bounds(), aspect());
-    if (scene_.traced && a.reset_camera) panel_.view.camera = home_camera_;
-    if (a.accel_changed && panel_.accel == AccelKind::kEmbree && !embree_available()) {
-      panel_.accel = AccelKind::kLueur;
+    if (scene_.traced && a.frame_scene && panel_.settings.camera)
+      panel_.settings.camera = frame_bounds(*panel_.settings.camera, scene_.traced->scene.bounds(), aspect());
+    if (scene_.traced && a.reset_camera) panel_.settings.camera = home_camera_;
+  }
+
+  /// A change to a setting that shapes the traced scene (smooth normals, the accelerator: the table's kReload)
+  /// prepares the same scene again; the old one is traced until the new one is ready.
+  void reload_if_needed() {
+    if (loading_ || !scene_.traced) return;  // checked again once the load in progress is done
+    if (change_effect(scene_settings_, panel_.settings) != SettingEffect::kReload) return;
+    if (panel_.settings.accel == AccelKind::kEmbree && !embree_available()) {
+      panel_.settings.accel = scene_settings_.accel;
       set_message("this build has no Embree (install libembree-dev and rebuild)", true);
-    } else if ((a.smooth_normals_changed || a.accel_changed) && !loading_) {
-      reloading_same_scene_ = true;
-      start_loading(scene_path_, false);
+      if (change_effect(scene_settings_, panel_.settings) != SettingEffect::kReload) return;
     }
+    reloading_same_scene_ = true;
+    start_loading(scene_path_, false);
+  }
+
+  /// The settings with the frames shown so far: what a saved view or image renders again.
+  Settings settings_with_shown_frames() const {
+    Settings settings = panel_.settings;
+    if (shown_.film.frames > 0) settings.frames = static_cast<int>(std::min<uint64_t>(shown_.film.frames, 1000000));
+    return settings;
   }
 
   void load_view(const std::string& path) {
     try {
-      const ViewState view = load_view_file(path, panel_.view);
-      const bool smooth_changed = view.smooth_normals != panel_.view.smooth_normals;
-      panel_.view = view;
-      if (!panel_.view.camera) panel_.view.camera = home_camera_;
-      glfwSetWindowSize(window_, view.render.width, view.render.height);
-      if (smooth_changed && !loading_) {
-        reloading_same_scene_ = true;
-        start_loading(scene_path_, false);
-      }
+      Settings loaded = load_view_file(path, panel_.settings);
+      loaded.camera = camera_of(loaded, home_camera_);
+      loaded.up.reset();
+      panel_.settings = loaded;
+      glfwSetWindowSize(window_, loaded.render.width, loaded.render.height);
       set_message("loaded view " + path, false);
     } catch (const std::exception& e) {
       set_message(e.what(), true);
@@ -272,14 +285,9 @@ class Viewer {
     }
     const std::string path = timestamped_name(extension);
     try {
-      const DisplayView view = display_view_of(panel_.view);
-      AppOptions described = options_;
-      described.scene_path = scene_path_;
-      ViewState state = panel_.view;
-      state.frames = film.frames;
-      apply_view(state, described);
-      write_image(path, shown_image(film, view.enabled, view.weights, view.layer), film_layer_images(film),
-                  view.display, describe_options(described));
+      const Settings& s = panel_.settings;
+      write_image(path, shown_image(film, s.render.enabled, s.weights, s.layer), film_layer_images(film), s.display,
+                  describe_options(scene_path_, settings_with_shown_frames()));
       set_message("saved " + path, false);
     } catch (const std::exception& e) {
       set_message(e.what(), true);
@@ -296,12 +304,12 @@ class Viewer {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
     if (w > 0 && h > 0) {  // a minimised window (0 x 0) keeps the last size
-      panel_.view.render.width = w;
-      panel_.view.render.height = h;
+      panel_.settings.render.width = w;
+      panel_.settings.render.height = h;
     }
     const uint64_t generation = tracer_.generation();
-    tracer_.set_settings(panel_.view.render);
-    if (panel_.view.camera) tracer_.set_camera(*panel_.view.camera);
+    tracer_.set_settings(panel_.settings.render);
+    if (panel_.settings.camera) tracer_.set_camera(*panel_.settings.camera);
     if (tracer_.generation() != generation) {
       // Latency is measured from the first change not yet on screen, as a user dragging would feel it.
       if (!restart_pending_) restart_time_ = Clock::now();
@@ -309,7 +317,7 @@ class Viewer {
       awaited_generation_ = tracer_.generation();
     }
     tracer_.set_paused(panel_.paused);
-    tracer_.set_frame_limit(panel_.view.frame_limit);
+    tracer_.set_frame_limit(panel_.settings.frame_limit);
   }
 
   void draw() {
@@ -325,14 +333,14 @@ class Viewer {
       panel_.preview_divisor = shown_.preview_divisor;
     }
     if (w <= 0 || h <= 0) return;
-    const DisplayView view = display_view_of(panel_.view);
-    if (shown_.film.width > 0) pipeline_.update(shown_.film, shown_.version, view);
+    const Settings& shown = panel_.settings;
+    if (shown_.film.width > 0) pipeline_.update(shown_.film, shown_.version, shown);
     gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl_.ClearColor(0.0f, 0.0f, 0.0f, 1.0f);
     gl_.Clear(GL_COLOR_BUFFER_BIT);
-    if (shown_.film.width > 0) pipeline_.draw(view, PixelRect{0, 0, w, h}, PixelRect{0, 0, w, h});
-    if (view.layer && shown_.film.width > 0 && !shown_.film.has(*view.layer))
-      set_message("view " + std::string(kLayerNames[static_cast<size_t>(*view.layer)]) +
+    if (shown_.film.width > 0) pipeline_.draw(shown, PixelRect{0, 0, w, h}, PixelRect{0, 0, w, h});
+    if (shown.layer && shown_.film.width > 0 && !shown_.film.has(*shown.layer))
+      set_message("view " + std::string(kLayerNames[static_cast<size_t>(*shown.layer)]) +
                       " is not rendered with these passes and reuse settings",
                   true);
   }
@@ -359,7 +367,7 @@ class Viewer {
 
   void write_state_file() const {
     nlohmann::json state;
-    state["view"] = nlohmann::json::parse(view_to_json(panel_.view));
+    state["view"] = nlohmann::json::parse(view_to_json(panel_.settings));
     const TracerStats stats = tracer_.stats();
     state["frames"] = stats.frames;
     state["generation"] = tracer_.generation();
@@ -401,6 +409,7 @@ class Viewer {
   std::string scene_path_;
   CameraSpec home_camera_;
   std::unique_ptr<SceneLoading> loading_;
+  Settings scene_settings_;  ///< the settings the scene (or the one loading) was prepared with
   bool loading_is_initial_ = false, reloading_same_scene_ = false;
   TracerSnapshot shown_;
   uint64_t display_frames_ = 0;
@@ -428,7 +437,8 @@ int run_viewer(const AppOptions& options) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  GLFWwindow* window = glfwCreateWindow(options.render.width, options.render.height, "Lueur", nullptr, nullptr);
+  GLFWwindow* window =
+      glfwCreateWindow(options.settings.render.width, options.settings.render.height, "Lueur", nullptr, nullptr);
   if (!window) throw std::runtime_error("cannot create an OpenGL 3.3 core window");
   glfwMakeContextCurrent(window);
   glfwSwapInterval(1);

@@ -78,24 +78,24 @@ DisplayPipeline::~DisplayPipeline() {
   gl_.DeleteProgram(program_);
 }
 
-std::array<int, 4> DisplayPipeline::slot_layers(const DisplayView& view) const {
+std::array<int, 4> DisplayPipeline::slot_layers(const Settings& shown) const {
   std::array<int, 4> layers = {-1, -1, -1, -1};
-  if (view.layer) {
-    layers[0] = static_cast<int>(*view.layer);
+  if (shown.layer) {
+    layers[0] = static_cast<int>(*shown.layer);
     return layers;
   }
   for (int p = 0; p < kPassCount; ++p)
-    if (view.enabled[static_cast<size_t>(p)])
+    if (shown.render.enabled[static_cast<size_t>(p)])
       layers[static_cast<size_t>(p)] = static_cast<int>(layer_of(static_cast<Pass>(p)));
   return layers;
 }
 
-void DisplayPipeline::update(const Film& film, uint64_t film_version, const DisplayView& view) {
+void DisplayPipeline::update(const Film& film, uint64_t film_version, const Settings& shown) {
   width_ = film.width;
   height_ = film.height;
   frames_ = film.frames;
   for (int l = 0; l < kLayerCount; ++l) film_has_[static_cast<size_t>(l)] = film.has(static_cast<Layer>(l));
-  const std::array<int, 4> layers = slot_layers(view);
+  const std::array<int, 4> layers = slot_layers(shown);
   gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
   for (size_t s = 0; s < slots_.size(); ++s) {
     Slot& slot = slots_[s];
@@ -116,8 +116,8 @@ void DisplayPipeline::update(const Film& film, uint64_t film_version, const Disp
   }
 }
 
-void DisplayPipeline::draw(const DisplayView& view, const PixelRect& viewport, const PixelRect& image) const {
-  const std::array<int, 4> layers = slot_layers(view);
+void DisplayPipeline::draw(const Settings& shown, const PixelRect& viewport, const PixelRect& image) const {
+  const std::array<int, 4> layers = slot_layers(shown);
   float scale[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   for (size_t s = 0; s < 4; ++s) {
     const int layer = layers[s];
@@ -125,7 +125,7 @@ void DisplayPipeline::draw(const DisplayView& view, const PixelRect& viewport, c
     if (layer < 0 || frames_ == 0 || slots_[s].layer != layer || !film_has_[static_cast<size_t>(layer)] ||
         slots_[s].width != width_ || slots_[s].height != height_)
       continue;
-    const float weight = view.layer ? 1.0f : view.weights[s];
+    const float weight = shown.layer ? 1.0f : shown.weights[s];
     scale[s] = weight / static_cast<float>(frames_);
   }
   gl_.Viewport(viewport.x, viewport.y, viewport.width, viewport.height);
@@ -139,8 +139,8 @@ void DisplayPipeline::draw(const DisplayView& view, const PixelRect& viewport, c
     gl_.BindTexture(GL_TEXTURE_2D, slots_[static_cast<size_t>(s)].texture);
   }
   gl_.Uniform4f(uniforms_.scale, scale[0], scale[1], scale[2], scale[3]);
-  gl_.Uniform1f(uniforms_.exposure, view.display.exposure);
-  gl_.Uniform1i(uniforms_.tonemap, static_cast<int>(view.display.tonemap));
+  gl_.Uniform1f(uniforms_.exposure, shown.display.exposure);
+  gl_.Uniform1i(uniforms_.tonemap, static_cast<int>(shown.display.tonemap));
   // gl_FragCoord is in window coordinates, so the rectangle is too.
   gl_.Uniform4f(uniforms_.rect, static_cast<float>(image.x), static_cast<float>(image.y),
                 static_cast<float>(image.width), static_cast<float>(image.height));

@@ -10,22 +10,9 @@
 #include "display/gl_api.h"
 #include "render/film.h"
 #include "render/tonemap.h"
-#include "render/view_state.h"
+#include "settings/settings.h"
 
 namespace lueur {
-
-/// What the display shows; every field can change without restarting the tracer.
-struct DisplayView {
-  std::array<bool, kPassCount> enabled = {true, true, true, false};
-  std::array<float, kPassCount> weights = kReportWeights;
-  std::optional<Layer> layer;  ///< set: show this one layer's average instead of the weighted sum of passes
-  DisplaySettings display;
-};
-
-/// The display half of a view: its passes, weights, layer and display transform.
-inline DisplayView display_view_of(const ViewState& view) {
-  return DisplayView{view.render.enabled, view.weights, view.layer, view.display};
-}
 
 /// A rectangle in framebuffer pixels, origin bottom-left as GL has it.
 struct PixelRect {
@@ -40,13 +27,13 @@ class DisplayPipeline {
   DisplayPipeline(const DisplayPipeline&) = delete;
   DisplayPipeline& operator=(const DisplayPipeline&) = delete;
 
-  /// Uploads the layers `view` needs from `film`, skipping textures that already hold that layer of the same
-  /// `film_version` (a number the caller changes whenever the film's contents change).
-  void update(const Film& film, uint64_t film_version, const DisplayView& view);
+  /// Uploads the layers the settings show (their passes, or their layer) from `film`, skipping textures that already
+  /// hold that layer of the same `film_version` (a number the caller changes whenever the film's contents change).
+  void update(const Film& film, uint64_t film_version, const Settings& shown);
 
-  /// Draws the last uploaded film into `image` of the bound framebuffer, whose full size is `viewport`
-  /// (pixels outside the image are black).
-  void draw(const DisplayView& view, const PixelRect& viewport, const PixelRect& image) const;
+  /// Draws the last uploaded film as `shown` says (weights, layer, exposure, tone map: none restarts the tracer) into
+  /// `image` of the bound framebuffer, whose full size is `viewport` (pixels outside the image are black).
+  void draw(const Settings& shown, const PixelRect& viewport, const PixelRect& image) const;
 
   int film_width() const { return width_; }
   int film_height() const { return height_; }
@@ -58,7 +45,7 @@ class DisplayPipeline {
     uint64_t version = 0;
     int width = 0, height = 0;
   };
-  std::array<int, 4> slot_layers(const DisplayView& view) const;
+  std::array<int, 4> slot_layers(const Settings& shown) const;
 
   const GlApi& gl_;
   unsigned program_ = 0, vertex_array_ = 0;

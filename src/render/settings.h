@@ -27,10 +27,6 @@ inline constexpr std::array<std::string_view, 4> kLightStrategyNames = {"all", "
 enum class ReuseMode : int { kOff = 0, kFrame = 1, kAverage = 2 };
 inline constexpr std::array<std::string_view, 3> kReuseModeNames = {"off", "frame", "average"};
 
-/// Which acceleration structure traces the rays: Lueur's own BVH or Embree (when the build has it).
-enum class AccelKind : int { kLueur = 0, kEmbree = 1 };
-inline constexpr std::array<std::string_view, 2> kAccelKindNames = {"lueur", "embree"};
-
 /// What the film accumulates: the four passes, then the layers that explain L2's screen-space reuse
 /// (report figures 7 and 8) and the per-pixel fraction of L2 rays that reused L1.
 /// `l1-diffuse` is the view-independent part of L1, kept when L2 reuses its running average diffuse-only.

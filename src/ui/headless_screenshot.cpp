@@ -38,7 +38,7 @@ void draw_panel_offscreen(GlGetProcAddress get_proc, PanelModel& panel, int widt
 
 }  // namespace
 
-Screenshot render_headless_screenshot(HeadlessGl kind, const Film& film, const DisplayView& view, PanelModel* panel) {
+Screenshot render_headless_screenshot(HeadlessGl kind, const Film& film, const Settings& shown, PanelModel* panel) {
   const HeadlessContext context = create_headless_context(kind);
   const GlApi gl = load_gl_api(context.get_proc);
   Screenshot shot;
@@ -48,10 +48,10 @@ Screenshot render_headless_screenshot(HeadlessGl kind, const Film& film, const D
   {
     DisplayPipeline pipeline(gl);
     OffscreenTarget target(gl, film.width, film.height);
-    pipeline.update(film, 1, view);
+    pipeline.update(film, 1, shown);
     target.bind();
     const PixelRect full{0, 0, film.width, film.height};
-    pipeline.draw(view, full, full);
+    pipeline.draw(shown, full, full);
     if (panel) draw_panel_offscreen(context.get_proc, *panel, film.width, film.height);
     shot.rgb = target.read_rgb8();
   }

@@ -18,9 +18,9 @@ struct Screenshot {
   std::string context;  ///< which context and renderer drew it, for the log
 };
 
-/// Renders `film` as the display would show it. `panel`, when given, is drawn over it as in the window.
-/// Throws std::runtime_error when no context can be made or GL fails.
-Screenshot render_headless_screenshot(HeadlessGl kind, const Film& film, const DisplayView& view,
+/// Renders `film` as the display would show it with these settings. `panel`, when given, is drawn over it as in the
+/// window. Throws std::runtime_error when no context can be made or GL fails.
+Screenshot render_headless_screenshot(HeadlessGl kind, const Film& film, const Settings& shown,
                                       PanelModel* panel = nullptr);
 
 }  // namespace lueur

@@ -4,9 +4,12 @@
 
 #include <imgui.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "render/indirect_light.h"
+#include "settings/setting_table.h"
 
 namespace lueur {
 namespace {
@@ -38,13 +41,39 @@ bool enum_combo(const char* label, const std::array<std::string_view, N>& names,
   return changed;
 }
 
+/// The setting's help as the last widget's tooltip.
+void setting_tooltip(std::string_view name) {
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(setting_info(name).help).c_str());
+}
+
+/// A slider over the setting's panel span (settings table); a value typed in (Ctrl+click) stays within the
+/// setting's full range, as on the command line.
+bool setting_slider(const char* label, std::string_view name, int& value) {
+  const SettingInfo& info = setting_info(name);
+  const bool changed =
+      ImGui::SliderInt(label, &value, static_cast<int>(info.slider->min), static_cast<int>(info.slider->max));
+  setting_tooltip(name);
+  value = std::clamp(value, static_cast<int>(info.range->min), static_cast<int>(info.range->max));
+  return changed;
+}
+
+bool setting_slider(const char* label, std::string_view name, float& value, const char* format) {
+  const SettingInfo& info = setting_info(name);
+  const bool changed = ImGui::SliderFloat(label, &value, static_cast<float>(info.slider->min),
+                                          static_cast<float>(info.slider->max), format);
+  setting_tooltip(name);
+  if (!std::isfinite(value)) value = static_cast<float>(info.slider->min);
+  value = std::clamp(value, static_cast<float>(info.range->min), static_cast<float>(info.range->max));
+  return changed;
+}
+
 void record_widget(PanelModel& m, const std::string& name) {
   const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
   m.widget_rects[name] = {lo.x, lo.y, hi.x, hi.y};
 }
 
 void passes_section(PanelModel& m) {
-  ViewState& v = m.view;
+  Settings& v = m.settings;
   static const char* const kLabels[kPassCount] = {"Le  (emission seen)", "L1  (direct light)",
                                                   "L2  (one-bounce indirect)", "AO  (ambient occlusion)"};
   for (int p = 0; p < kPassCount; ++p) {
@@ -54,7 +83,7 @@ void passes_section(PanelModel& m) {
     record_widget(m, "pass-" + std::string(kPassNames[i]));
     ImGui::SameLine();
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8.0f);
-    ImGui::SliderFloat("##weight", &v.weights[i], 0.0f, 2.0f, "%.2f");
+    setting_slider("##weight", "weights", v.weights[i], "%.2f");
     record_widget(m, "weight-" + std::string(kPassNames[i]));
     ImGui::SameLine();
     ImGui::TextUnformatted(kLabels[p]);
@@ -68,7 +97,7 @@ void passes_section(PanelModel& m) {
 
 /// The AO radius: automatic (the setting 0, shown as the radius it stands for) or typed in world units.
 void ao_radius_widgets(PanelModel& m) {
-  RenderSettings& r = m.view.render;
+  RenderSettings& r = m.settings.render;
   const float automatic_radius = m.automatic_ao_radius;
   bool automatic = r.ao_radius <= 0.0f;
   if (ImGui::Checkbox("Automatic AO radius", &automatic)) r.ao_radius = automatic ? 0.0f : automatic_radius;
@@ -79,28 +108,34 @@ void ao_radius_widgets(PanelModel& m) {
     return;
   }
   ImGui::InputFloat("AO radius", &r.ao_radius, 0.0f, 0.0f, "%.4g");
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("world units; 0: automatic");
+  setting_tooltip("ao-radius");
   if (!(r.ao_radius > 0.0f)) r.ao_radius = 0.0f;  // 0, negative or NaN: back to automatic
+  r.ao_radius = std::min(r.ao_radius, static_cast<float>(setting_info("ao-radius").range->max));
 }
 
-void sampling_section(PanelModel& m, PanelActions& actions) {
-  ViewState& v = m.view;
+void sampling_section(PanelModel& m) {
+  Settings& v = m.settings;
   RenderSettings& r = v.render;
   enum_combo("Light sampling", kLightStrategyNames, r.lights);
-  ImGui::SliderInt("L1 shadow rays", &r.l1_rays, 0, 64);
-  ImGui::SliderFloat("Blinn-Phong K", &r.blinn_k, 0.0f, 1.0f, "%.2f");
-  ImGui::SliderInt("L2 bounce rays", &r.l2_rays, 0, 64);
+  setting_tooltip("lights");
+  setting_slider("L1 shadow rays", "l1-rays", r.l1_rays);
+  setting_slider("Blinn-Phong K", "blinn-k", r.blinn_k, "%.2f");
+  setting_slider("L2 bounce rays", "l2-rays", r.l2_rays);
   enum_combo("L2 reuse", kReuseModeNames, r.reuse);
-  ImGui::SliderFloat("Recompute ratio", &r.recompute_ratio, 0.0f, 1.0f, "%.3f");
+  setting_tooltip("reuse");
+  setting_slider("Recompute ratio", "recompute-ratio", r.recompute_ratio, "%.3f");
   ImGui::Checkbox("Reuse diffuse L1 only", &r.reuse_diffuse_only);
-  ImGui::SliderInt("AO rays", &r.ao_rays, 0, 64);
+  setting_tooltip("reuse-diffuse-only");
+  setting_slider("AO rays", "ao-rays", r.ao_rays);
   ao_radius_widgets(m);
-  if (ImGui::Checkbox("Smooth normals", &v.smooth_normals)) actions.smooth_normals_changed = true;
+  ImGui::Checkbox("Smooth normals", &v.smooth_normals);  // the viewer prepares the scene again
+  setting_tooltip("smooth-normals");
   int seed = static_cast<int>(r.seed & 0x7fffffff);
   if (ImGui::InputInt("Seed", &seed) && seed >= 0) r.seed = static_cast<uint64_t>(seed);
+  setting_tooltip("seed");
 }
 
-void view_section(ViewState& v) {
+void view_section(Settings& v) {
   // "combined" first, then every layer; the layers that explain reuse are report figures 7 and 8.
   int current = v.layer ? static_cast<int>(*v.layer) + 1 : 0;
   const std::string preview = v.layer ? std::string(kLayerNames[static_cast<size_t>(*v.layer)]) : "combined";
@@ -115,8 +150,10 @@ void view_section(ViewState& v) {
     v.layer.reset();
   else
     v.layer = static_cast<Layer>(current - 1);
-  ImGui::SliderFloat("Exposure (stops)", &v.display.exposure, -10.0f, 10.0f, "%.2f");
+  setting_tooltip("view");
+  setting_slider("Exposure (stops)", "exposure", v.display.exposure, "%.2f");
   enum_combo("Tone map", kToneMapNames, v.display.tonemap);
+  setting_tooltip("tonemap");
 }
 
 void statistics_section(const PanelModel& m) {
@@ -135,14 +172,16 @@ void statistics_section(const PanelModel& m) {
 }
 
 void control_section(PanelModel& m, PanelActions& actions) {
-  if (enum_combo("Accelerator", kAccelKindNames, m.accel)) actions.accel_changed = true;
+  enum_combo("Accelerator", kAccelKindNames, m.settings.accel);  // the viewer builds the scene's structure again
+  setting_tooltip("accel");
   if (ImGui::Button(m.paused ? "Resume" : "Pause")) m.paused = !m.paused;
   ImGui::SameLine();
   if (ImGui::Button("Reset")) actions.reset = true;
   ImGui::SameLine();
-  int limit = static_cast<int>(std::min<uint64_t>(m.view.frame_limit, 1000000));
+  int limit = static_cast<int>(std::min<uint64_t>(m.settings.frame_limit, 1000000));
   ImGui::SetNextItemWidth(100.0f);
-  if (ImGui::InputInt("Frame limit", &limit, 0, 0)) m.view.frame_limit = static_cast<uint64_t>(std::max(0, limit));
+  if (ImGui::InputInt("Frame limit", &limit, 0, 0)) m.settings.frame_limit = static_cast<uint64_t>(std::max(0, limit));
+  setting_tooltip("frame-limit");
   if (ImGui::Button("Frame scene (F)")) actions.frame_scene = true;
   ImGui::SameLine();
   if (ImGui::Button("Reset view (R)")) actions.reset_camera = true;
@@ -189,8 +228,8 @@ PanelActions draw_panel(PanelModel& m) {
     ImGui::PopStyleColor();
   }
   if (ImGui::CollapsingHeader("Passes", ImGuiTreeNodeFlags_DefaultOpen)) passes_section(m);
-  if (ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) sampling_section(m, actions);
-  if (ImGui::CollapsingHeader("View and display", ImGuiTreeNodeFlags_DefaultOpen)) view_section(m.view);
+  if (ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) sampling_section(m);
+  if (ImGui::CollapsingHeader("View and display", ImGuiTreeNodeFlags_DefaultOpen)) view_section(m.settings);
   if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) statistics_section(m);
   if (ImGui::CollapsingHeader("Control", ImGuiTreeNodeFlags_DefaultOpen)) control_section(m, actions);
   if (ImGui::CollapsingHeader("Files", ImGuiTreeNodeFlags_DefaultOpen)) files_section(m, actions);

@@ -1,4 +1,5 @@
-// The Dear ImGui control panel: edits a ViewState in place and reports the buttons pressed. It draws with whatever
+// The Dear ImGui control panel: edits the settings in place (within the limits of the settings table) and reports
+// the buttons pressed. It draws with whatever
 // ImGui back-end is running (the window's GLFW one, or none for a headless screenshot) and knows nothing of the
 // tracer thread: the caller applies the edited state.
 #pragma once
@@ -8,17 +9,15 @@
 #include <map>
 #include <string>
 
-#include "accel/accelerator.h"
 #include "render/progressive_tracer.h"
 #include "render/traced_scene.h"
-#include "render/view_state.h"
+#include "settings/settings.h"
 
 namespace lueur {
 
 struct PanelModel {
-  ViewState view;  ///< edited by the widgets
+  Settings settings;  ///< edited by the widgets
   bool paused = false;
-  AccelKind accel = AccelKind::kLueur;  ///< which acceleration structure traces the rays (rebuilds the scene)
   // Read-only figures.
   TracerStats stats;
   int film_width = 0, film_height = 0, preview_divisor = 1;
@@ -40,8 +39,6 @@ struct PanelActions {
   bool save_png = false, save_pfm = false, save_exr = false;
   bool save_view = false, load_view = false;
   bool frame_scene = false, reset_camera = false;
-  bool smooth_normals_changed = false;
-  bool accel_changed = false;
 };
 
 /// Sets the panel's figures about the scene being traced: name, triangle and emitter counts, automatic AO radius.

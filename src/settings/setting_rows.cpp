@@ -1,0 +1,96 @@
+// The table of settings itself: one row per member of Settings. A new setting is one row here (plus its widget in
+// the panel, where it has one). The rows' order is that of the command line's help and of the settings written
+// into images (kept from before the table existed, so that images stay byte for byte the same).
+#include <limits>
+
+#include "settings/setting_kinds.h"
+
+namespace lueur::setting_rows {
+namespace {
+
+std::vector<Row> make_rows() {
+  using E = SettingEffect;
+  const SettingRange rays{0, 4096}, ray_slider{0, 64};
+  const double u64_max = static_cast<double>(std::numeric_limits<uint64_t>::max());
+  std::vector<Row> table;
+  table.push_back(size_row());
+  Row frames = integer_row("frames", "frames a headless render accumulates", E::kNone,
+                           [](auto& s) -> auto& { return s.frames; }, {1, 1e6});
+  // A view saved before its first frame holds 0 frames: it keeps the default instead of being refused.
+  frames.read_json = [read = frames.read_json](const nlohmann::json& root, Settings& s) {
+    const auto it = root.find("frames");
+    if (it != root.end() && it->is_number_integer() && it->get<int64_t>() == 0) return;
+    read(root, s);
+  };
+  table.push_back(frames);
+  table.push_back(passes_row());
+  table.push_back(weights_row());
+  table.push_back(enum_row<LightStrategy>(
+      "lights", "how L1 picks the emitter of each shadow ray", E::kRestart, kLightStrategyNames,
+      [](auto& s) -> auto& { return s.render.lights; }));
+  table.push_back(integer_row(
+      "l1-rays", "L1 shadow rays per pixel per frame", E::kRestart, [](auto& s) -> auto& { return s.render.l1_rays; },
+      rays, ray_slider));
+  table.push_back(integer_row(
+      "l2-rays", "L2 bounce rays per pixel per frame", E::kRestart, [](auto& s) -> auto& { return s.render.l2_rays; },
+      rays, ray_slider));
+  table.push_back(enum_row<ReuseMode>(
+      "reuse",
+      "where L2 takes L1 at a bounce hit from: nowhere (recompute), this frame's "
+      "pixels, or their running average",
+      E::kRestart, kReuseModeNames, [](auto& s) -> auto& { return s.render.reuse; }));
+  table.push_back(real_row(
+      "recompute-ratio", "share of the L1 rays that recompute L1 where it cannot be reused", E::kRestart,
+      [](auto& s) -> auto& { return s.render.recompute_ratio; }, {0, 16}, SettingRange{0, 1}));
+  table.push_back(switch_row(
+      "reuse-diffuse-only", "reuse only the view-independent part of L1 (no bias on glossy surfaces)", E::kRestart,
+      [](auto& s) -> auto& { return s.render.reuse_diffuse_only; }, true));
+  table.push_back(integer_row(
+      "ao-rays", "AO rays per pixel per frame", E::kRestart, [](auto& s) -> auto& { return s.render.ao_rays; }, rays,
+      ray_slider));
+  Row ao_radius = real_row("ao-radius", "AO radius in world units; 0: a tenth of the scene's diagonal", E::kRestart,
+                           [](auto& s) -> auto& { return s.render.ao_radius; }, {0, 1e30});
+  ao_radius.always_described = false;
+  table.push_back(ao_radius);
+  table.push_back(view_row());
+  Row accel = enum_row<AccelKind>(
+      "accel", "acceleration structure: Lueur's own BVH or Embree", E::kReload, kAccelKindNames,
+      [](auto& s) -> auto& { return s.accel; });
+  accel.always_described = false;
+  table.push_back(accel);
+  table.push_back(real_row(
+      "blinn-k", "Lambert share K of the report's Blinn-Phong mix (materials without Ks)", E::kRestart,
+      [](auto& s) -> auto& { return s.render.blinn_k; }, {0, 1}, SettingRange{0, 1}));
+  table.push_back(switch_row(
+      "smooth-normals", "smooth normals for files that have none", E::kReload,
+      [](auto& s) -> auto& { return s.smooth_normals; }, false));
+  table.push_back(
+      integer_row("seed", "random seed", E::kRestart, [](auto& s) -> auto& { return s.render.seed; }, {0, u64_max}));
+  table.push_back(real_row(
+      "exposure", "exposure in stops", E::kDisplay, [](auto& s) -> auto& { return s.display.exposure; }, {-30, 30},
+      SettingRange{-10, 10}));
+  table.push_back(enum_row<ToneMap>(
+      "tonemap", "tone map", E::kDisplay, kToneMapNames, [](auto& s) -> auto& { return s.display.tonemap; }));
+  table.push_back(camera_row());
+  table.push_back(up_row());
+  Row frame_limit = integer_row("frame-limit", "window: stop accumulating after this many frames (0: never)", E::kNone,
+                                [](auto& s) -> auto& { return s.frame_limit; }, {0, u64_max});
+  frame_limit.always_described = false;
+  table.push_back(frame_limit);
+
+  for (Row& row : table) {
+    if (!row.same)
+      row.same = [format = row.format](const Settings& a, const Settings& b) { return format(a) == format(b); };
+    row.info.default_text = row.format(Settings{}).value_or("");
+  }
+  return table;
+}
+
+}  // namespace
+
+const std::vector<Row>& rows() {
+  static const std::vector<Row> table = make_rows();
+  return table;
+}
+
+}  // namespace lueur::setting_rows

@@ -1,0 +1,39 @@
+// The one settings model: everything a view file, the command line and the panel set (camera, size, passes,
+// weights, sampling, reuse, back-end, display, frame counts). What each member means, its range, default, help and
+// what a change to it does are rows of the table in settings/setting_table.h, from which the command line, view
+// files, image metadata and the panel's limits are all made. Depends on the render layer's plain types only.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+
+#include "accel/accel_kind.h"
+#include "render/camera.h"
+#include "render/settings.h"
+#include "render/tonemap.h"
+
+namespace lueur {
+
+struct Settings {
+  std::optional<CameraSpec> camera;  ///< unset: the scene's default view
+  std::optional<Vec3> up;            ///< when set, the up vector of whichever camera is used
+  RenderSettings render;             ///< what the tracer needs: size, passes, sampling, reuse, seed
+  std::array<float, kPassCount> weights = kReportWeights;
+  std::optional<Layer> layer;  ///< what is shown; unset: the weighted combination of the passes
+  DisplaySettings display;
+  bool smooth_normals = true;           ///< smooth normals for files without them
+  AccelKind accel = AccelKind::kLueur;  ///< which acceleration structure traces the rays
+  int frames = 64;                      ///< frames a headless render accumulates (a saved view: those shown)
+  uint64_t frame_limit = 0;             ///< the window stops accumulating after this many frames; 0: never
+  bool operator==(const Settings&) const = default;
+};
+
+/// The camera these settings use, given the scene's default view.
+inline CameraSpec camera_of(const Settings& settings, const CameraSpec& scene_default) {
+  CameraSpec camera = settings.camera.value_or(scene_default);
+  if (settings.up) camera.up = *settings.up;
+  return camera;
+}
+
+}  // namespace lueur

@@ -1,0 +1,60 @@
+// JSON form of the settings, made from the rows of the settings table.
+#include "settings/view_file.h"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "settings/setting_rows.h"
+
+namespace lueur {
+
+using nlohmann::json;
+
+std::string view_to_json(const Settings& settings) {
+  json root = {{"lueur_view", 1}};
+  for (const setting_rows::Row& row : setting_rows::rows()) row.write_json(settings, root);
+  return root.dump(2) + "\n";
+}
+
+Settings view_from_json(const std::string& text, const Settings& defaults) {
+  const json root = json::parse(text, nullptr, false);
+  if (root.is_discarded()) throw ViewFileError("view file: not valid JSON");
+  if (!root.is_object() || !root.contains("lueur_view"))
+    throw ViewFileError("view file: not a Lueur view (no 'lueur_view')");
+  for (const auto& [key, value] : root.items()) {
+    const auto& all = setting_rows::rows();
+    const bool known = key == "lueur_view" || std::any_of(all.begin(), all.end(), [&](const setting_rows::Row& row) {
+                         return std::find(row.json_keys.begin(), row.json_keys.end(), key) != row.json_keys.end();
+                       });
+    if (!known) throw ViewFileError("view file: unknown setting '" + key + "'");
+  }
+  Settings settings = defaults;
+  for (const setting_rows::Row& row : setting_rows::rows()) {
+    try {
+      row.read_json(root, settings);
+    } catch (const setting_rows::ValueError& e) {
+      throw ViewFileError(std::string("view file: ") + e.what());
+    }
+  }
+  return settings;
+}
+
+void save_view_file(const std::string& path, const Settings& settings) {
+  write_file_atomically(path, view_to_json(settings));
+}
+
+Settings load_view_file(const std::string& path, const Settings& defaults) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError("cannot read view file '" + path + "'");
+  std::ostringstream text;
+  text << in.rdbuf();
+  try {
+    return view_from_json(text.str(), defaults);
+  } catch (const ViewFileError& e) {
+    throw ViewFileError(path + ": " + e.what());
+  }
+}
+
+}  // namespace lueur
