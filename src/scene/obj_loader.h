@@ -1,15 +1,16 @@
 // Loads a Wavefront OBJ (+ MTL) file into a Scene, rejecting malformed input with a file:line message.
-// Depends on core and scene only; tinyobjloader stays inside obj_loader.cpp and never leaks into this header.
+// Depends on core and scene only; tinyobjloader stays inside obj_convert.cpp and never leaks into this header.
+// The steps behind it: obj_validate, mtl_scan and obj_convert (with obj_text for the text they share).
 #pragma once
-
-#include "core/memory_budget.h"
-#include "scene/scene.h"
 
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "core/memory_budget.h"
+#include "scene/scene.h"
 
 namespace lueur {
 

@@ -1,0 +1,82 @@
+// Text helpers of the OBJ loader: tokens, quoted tokens, strict numbers and message pieces (see obj_text.h).
+// Depends on core and obj_loader.h only; never on tinyobjloader.
+#include "scene/obj_text.h"
+
+#include <cctype>
+#include <charconv>
+#include <cmath>
+
+#include "scene/obj_loader.h"
+
+namespace lueur::obj {
+
+using std::string_view;
+
+string_view trim(string_view s) {
+  while (!s.empty() && is_blank(s.front())) s.remove_prefix(1);
+  while (!s.empty() && is_blank(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+string_view next_token(string_view& rest) {
+  size_t begin = 0;
+  while (begin < rest.size() && is_blank(rest[begin])) ++begin;
+  size_t end = begin;
+  while (end < rest.size() && !is_blank(rest[end])) ++end;
+  const string_view token = rest.substr(begin, end - begin);
+  rest.remove_prefix(end);
+  return token;
+}
+
+std::string printable(string_view token, size_t max_chars) {
+  std::string out;
+  for (size_t i = 0; i < token.size(); ++i) {
+    if (out.size() >= max_chars) {
+      out += "...";
+      break;
+    }
+    const unsigned char c = static_cast<unsigned char>(token[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      static const char* hex = "0123456789abcdef";
+      out += "\\x";
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    }
+  }
+  return out;
+}
+
+void fail_at(const std::string& label, size_t line, const std::string& what) {
+  throw SceneError(label + ":" + std::to_string(line) + ": " + what);
+}
+
+std::string too_large(const std::string& what, uint64_t needed, const MemoryBudget& budget) {
+  return "scene too large: " + what + " about " + format_bytes(needed) + " of memory, more than the " +
+         format_bytes(budget.bytes) + " available (" + budget.source + ")";
+}
+
+std::string counted(size_t n, const std::string& noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); }
+
+NumberStatus parse_float(string_view token, float& out) {
+  // tinyobjloader accepts a leading '+', std::from_chars does not; "+-1" stays an error for both.
+  if (token.size() > 1 && token[0] == '+' && (std::isdigit(static_cast<unsigned char>(token[1])) || token[1] == '.'))
+    token.remove_prefix(1);
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  if (ec == std::errc::result_out_of_range && end == token.data() + token.size()) return NumberStatus::not_finite;
+  if (ec != std::errc() || end != token.data() + token.size()) return NumberStatus::not_a_number;
+  out = static_cast<float>(value);
+  return std::isfinite(out) ? NumberStatus::ok : NumberStatus::not_finite;
+}
+
+NumberStatus parse_integer(string_view token, long long& out) {
+  if (token.size() > 1 && token[0] == '+' && std::isdigit(static_cast<unsigned char>(token[1]))) token.remove_prefix(1);
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), out);
+  if (end != token.data() + token.size() || token.empty()) return NumberStatus::not_a_number;
+  if (ec == std::errc::result_out_of_range) return NumberStatus::not_finite;
+  return ec == std::errc() ? NumberStatus::ok : NumberStatus::not_a_number;
+}
+
+}  // namespace lueur::obj
