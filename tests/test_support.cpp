@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace lueur::test {
@@ -139,6 +140,27 @@ Scene make_rect_light_over_floor(float w, float h, float height, Vec3 rho, Vec3 
   add_quad(s, {-x, height, -z}, {x, height, -z}, {x, height, z}, {-x, height, z}, 1);  // normal -y
   collect_emitters(s);
   return s;
+}
+
+double lambert_irradiance(const std::vector<glm::dvec3>& polygon, const glm::dvec3& p, const glm::dvec3& n, double le) {
+  // Newell's normal: the polygon's area vector, pointing to the emitting side whatever corner is concave.
+  glm::dvec3 area_normal(0.0);
+  for (size_t i = 0; i < polygon.size(); ++i) area_normal += glm::cross(polygon[i], polygon[(i + 1) % polygon.size()]);
+  if (!(glm::dot(area_normal, p - polygon[0]) > 0.0)) return 0.0;  // behind the polygon or in its plane
+  double sum = 0.0;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const glm::dvec3 a = polygon[i] - p, b = polygon[(i + 1) % polygon.size()] - p;
+    if (glm::dot(a, n) < 0.0) return std::numeric_limits<double>::quiet_NaN();  // below the horizon
+    // b x a, not a x b: for corners counter-clockwise seen from p, it is the inward normal of this side of the
+    // pyramid from p through the polygon, so every edge adds to E when n faces the polygon.
+    const glm::dvec3 normal = glm::cross(b, a);
+    const double length = glm::length(normal);
+    if (length == 0.0) continue;  // p on the edge's line: the edge subtends no angle
+    // atan2 rather than acos of a dot product: exact for the small angles of a far polygon.
+    const double theta = std::atan2(length, glm::dot(a, b));
+    sum += theta * glm::dot(normal / length, n);
+  }
+  return 0.5 * le * sum;
 }
 
 bool chi_square_rejects(double statistic, int dof) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace lueur::test {
 
@@ -50,6 +51,14 @@ Scene make_closed_emitting_sphere(float r, int segments, int rings, Vec3 rho, Ve
 
 /// A w x h rectangle light (two triangles, facing -y) at height `height` above a large diffuse floor at y = 0.
 Scene make_rect_light_over_floor(float w, float h, float height, Vec3 rho, Vec3 le);
+
+/// Irradiance at `p`, on a surface with unit normal `n`, from a planar polygon of uniform radiance `le`: Lambert's
+/// formula (1760), E = le / 2 * sum_i theta_i (gamma_i . n), where edge i runs from corner i to corner i + 1,
+/// theta_i is the angle it subtends at p and gamma_i is the unit normal of the plane through p and that edge.
+/// The corners run counter-clockwise seen from the emitting side (Lueur's winding: (c1 - c0) x (c2 - c0) points
+/// there); from behind, p sees the back, which does not emit, and gets 0. The formula needs the polygon wholly
+/// above p's horizon: when a corner lies below it the result is NaN, so such a test fails instead of passing.
+double lambert_irradiance(const std::vector<glm::dvec3>& polygon, const glm::dvec3& p, const glm::dvec3& n, double le);
 
 /// Wilson-Hilferty: true when the chi-square statistic is implausibly large for `dof` degrees of freedom
 /// (beyond about 4 standard deviations, p < 1e-4).
