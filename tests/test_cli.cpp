@@ -4,7 +4,7 @@
 
 #include <fstream>
 
-#include "render/image_output.h"
+#include "image/image_output.h"
 #include "test_support.h"
 
 namespace lueur {

@@ -5,7 +5,7 @@
 
 #include <random>
 
-#include "render/image_output.h"
+#include "image/image_output.h"
 #include "test_support.h"
 #include "ui/headless_screenshot.h"
 

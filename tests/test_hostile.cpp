@@ -12,7 +12,7 @@
 #include <set>
 #include <sstream>
 
-#include "render/image_output.h"
+#include "image/image_output.h"
 #include "test_support.h"
 
 namespace lueur {

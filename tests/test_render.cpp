@@ -1,7 +1,7 @@
 // The renderer as a whole: determinism across thread counts, strategies agreeing in expectation, the embedded
 // default scene against its OBJ copy in assets/, and the image encoders.
 #include "core/atomic_file.h"
-#include "render/image_output.h"
+#include "image/image_output.h"
 #include "render/renderer.h"
 #include "scene/default_scene.h"
 #include "scene/obj_loader.h"

@@ -10,7 +10,7 @@
 #include "app/scene_source.h"
 #include "core/atomic_file.h"
 #include "core/memory_budget.h"
-#include "render/image_output.h"
+#include "image/image_output.h"
 #include "render/render_memory.h"
 #include "render/renderer.h"
 #include "scene/obj_loader.h"

@@ -6,7 +6,7 @@
 // or a non-finite value in the film is a finding. Run it with scripts/fuzz.sh.
 #include "render/camera.h"
 #include "render/film.h"
-#include "render/image_output.h"
+#include "image/image_output.h"
 #include "render/renderer.h"
 #include "render/thread_pool.h"
 #include "render/traced_scene.h"

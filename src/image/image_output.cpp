@@ -1,5 +1,5 @@
 // PNG through stb_image_write (plus our own tEXt chunk), PFM by hand, EXR through tinyexr; all written atomically.
-#include "render/image_output.h"
+#include "image/image_output.h"
 
 #include <stb_image_write.h>
 #include <tinyexr.h>

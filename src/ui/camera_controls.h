@@ -1,5 +1,5 @@
-// How mouse and keys move the camera: orbit around the target, pan in the view plane, dolly towards the target,
-// fly with WASD/QE. Pure functions of a CameraSpec, so they are tested without a window.
+// How the window's mouse and keys move the camera: orbit around the target, pan in the view plane, dolly towards
+// the target, fly with WASD/QE. Pure functions of a CameraSpec (no ImGui, no GLFW), so they are tested without one.
 #pragma once
 
 #include "render/camera.h"

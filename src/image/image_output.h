@@ -1,5 +1,5 @@
 // Writing images: PNG (tone-mapped 8-bit sRGB), PFM (linear float RGB) and EXR (linear, one layer per pass).
-// Every file is written to a temporary file and renamed. Depends on the render layer's images; no GL.
+// Every file is written to a temporary file and renamed. Depends on the render layer (film, tone map); no GL.
 #pragma once
 
 #include <string>

@@ -1,5 +1,5 @@
 // Camera moves in the camera's own basis.
-#include "render/camera_controls.h"
+#include "ui/camera_controls.h"
 
 #include <algorithm>
 #include <cmath>
