@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <iostream>
 #include <random>
 #include <sstream>
@@ -12,6 +11,7 @@
 #include <vector>
 
 #include "bvh/bvh.h"
+#include "test_support.h"
 
 namespace lueur {
 namespace {
@@ -750,10 +750,12 @@ TEST(BvhVersusBruteForce, SseKernelsOnAnyMachine) {
   const Corners sphere = make_sphere(40, 80, 3.0f);
   const Bvh default_soup = build_bvh(soup);
   EXPECT_EQ(default_soup.wide8_nodes.empty(), !bvh_avx2_enabled());
-  ::setenv("LUEUR_BVH_ISA", "sse", 1);
-  const Bvh sse_soup = build_bvh(soup);
-  const Bvh sse_sphere = build_bvh(sphere);
-  ::unsetenv("LUEUR_BVH_ISA");
+  Bvh sse_soup, sse_sphere;
+  {
+    const test::ScopedEnv isa("LUEUR_BVH_ISA", "sse");  // restored even if a build throws
+    sse_soup = build_bvh(soup);
+    sse_sphere = build_bvh(sphere);
+  }
   ASSERT_TRUE(sse_soup.wide8_nodes.empty());
   ASSERT_FALSE(sse_soup.wide_nodes.empty());
   const RayStats a = compare_with_brute_force(soup, sse_soup, 10000, 108);

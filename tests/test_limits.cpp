@@ -1,30 +1,19 @@
 // Limits: work too large for the machine's memory is refused up front with a message that says so (image sizes,
 // scene files and their vertex and triangle counts), and the memory budget behind that is read correctly.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <limits>
+
 #include "core/memory_budget.h"
 #include "render/render_memory.h"
 #include "scene/obj_loader.h"
 #include "test_support.h"
 
-#include <gtest/gtest.h>
-
-#include <cstdlib>
-#include <fstream>
-#include <limits>
-
 namespace lueur {
 namespace {
 
-/// Sets an environment variable for one scope.
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, const char* value) : name_(name) { ::setenv(name, value, 1); }
-  ~ScopedEnv() { ::unsetenv(name_); }
-  ScopedEnv(const ScopedEnv&) = delete;
-  ScopedEnv& operator=(const ScopedEnv&) = delete;
-
- private:
-  const char* name_;
-};
+using test::ScopedEnv;
 
 TEST(MemoryBudget, ParsesMemAvailable) {
   EXPECT_EQ(parse_meminfo_available("MemTotal:       24683620 kB\nMemFree:  100 kB\nMemAvailable:   2048 kB\n"),

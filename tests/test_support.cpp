@@ -71,6 +71,18 @@ std::string shared_scene(const std::string& relative) {
   return std::filesystem::exists(path) ? path.string() : std::string();
 }
 
+ScopedEnv::ScopedEnv(const char* name, const char* value) : name_(name) {
+  if (const char* old = std::getenv(name)) previous_ = old;
+  ::setenv(name, value, 1);
+}
+
+ScopedEnv::~ScopedEnv() {
+  if (previous_)
+    ::setenv(name_.c_str(), previous_->c_str(), 1);
+  else
+    ::unsetenv(name_.c_str());
+}
+
 Scene make_closed_emitting_box(float h, Vec3 rho, Vec3 le) {
   Scene s;
   s.name = "closed-box";

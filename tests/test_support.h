@@ -1,6 +1,8 @@
-// Helpers shared by the test suites: temporary directories, running the lueur executable, file reading.
+// Helpers shared by the test suites: temporary directories, running the lueur executable, file reading, scoped
+// environment variables.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,12 +33,27 @@ bool file_exists(const std::string& path);
 /// Path of ../shared/scenes/<relative>; empty when the shared scenes are not beside this checkout.
 std::string shared_scene(const std::string& relative);
 
+/// Sets an environment variable for one scope, then puts back what was there before (the old value, or no
+/// variable) on every way out of the scope: a failed ASSERT returns early, and the tests after it in the same
+/// process must not inherit the setting.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value);
+  ~ScopedEnv();
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  std::string name_;
+  std::optional<std::string> previous_;
+};
+
 }  // namespace lueur::test
+
+#include <gtest/gtest.h>
 
 #include "render/settings.h"
 #include "scene/scene.h"
-
-#include <gtest/gtest.h>
 
 namespace lueur::test {
 
