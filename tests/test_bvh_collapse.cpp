@@ -1,16 +1,20 @@
 // Tests for the collapse of the BVH2 into the wide tree (bvh_wide.cpp): on small scenes its SAH cost must equal
-// the lowest that any collapse of the same BVH2 reaches, found here by enumerating every choice. Depends on bvh only.
+// the lowest that any collapse of the same BVH2 reaches, found here by enumerating every choice; and the scenes must
+// be ones where that lowest cost is worth finding (the greedy collapse it replaced costs more on most of them).
+// Depends on bvh only.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
+#include <iostream>
 #include <limits>
+#include <optional>
 #include <random>
 #include <vector>
 
 #include "bvh/bvh.h"
+#include "test_support.h"
 
 namespace lueur {
 namespace {
@@ -33,11 +37,13 @@ double area_of(const BvhNode& n) { return area_of(n.lo, n.hi); }
 struct Exhaustive {
   const Bvh& bvh;
   uint32_t width;
-  std::vector<uint32_t> triangles;  // under each BVH2 node
+  std::vector<uint32_t> triangles;         // under each BVH2 node
   mutable std::vector<double> slot_costs;  // slot(n), once computed (NaN before)
 
   explicit Exhaustive(const Bvh& b, uint32_t w)
-      : bvh(b), width(w), triangles(b.nodes.size(), 0),
+      : bvh(b),
+        width(w),
+        triangles(b.nodes.size(), 0),
         slot_costs(b.nodes.size(), std::numeric_limits<double>::quiet_NaN()) {
     for (size_t i = bvh.nodes.size(); i-- > 0;) {
       const BvhNode& n = bvh.nodes[i];
@@ -79,6 +85,45 @@ struct Exhaustive {
   }
 };
 
+/// The cost of the greedy collapse Lueur used before the optimal one (as Embree's wide builders shape their trees):
+/// a wide node takes the two children of its BVH2 node and keeps opening the inner one of largest area until it is
+/// full; a slot is then a leaf where it is a BVH2 leaf, or holds at most kBvhMaxLeafSize triangles and testing them
+/// all costs no more than one split, else a wide node of its own. A collapse the exhaustive search also considers,
+/// so never cheaper than its lowest.
+struct Greedy {
+  const Exhaustive& exhaustive;
+
+  bool leaf(uint32_t n) const {
+    const BvhNode& node = exhaustive.bvh.nodes[n];
+    if (node.count > 0) return true;
+    if (exhaustive.triangles[n] > kBvhMaxLeafSize) return false;
+    const double split =
+        kNodeCost * area_of(node) + exhaustive.leaf_cost(node.first) + exhaustive.leaf_cost(node.first + 1);
+    return !(split < exhaustive.leaf_cost(n));
+  }
+
+  double slot(uint32_t n) const { return leaf(n) ? exhaustive.leaf_cost(n) : wide_node(n); }
+
+  double wide_node(uint32_t n) const {
+    const Bvh& bvh = exhaustive.bvh;
+    std::vector<uint32_t> slots{bvh.nodes[n].first, bvh.nodes[n].first + 1};
+    while (slots.size() < exhaustive.width) {
+      auto largest = slots.end();
+      for (auto s = slots.begin(); s != slots.end(); ++s)
+        if (bvh.nodes[*s].count == 0 &&
+            (largest == slots.end() || area_of(bvh.nodes[*s]) > area_of(bvh.nodes[*largest])))
+          largest = s;
+      if (largest == slots.end()) break;
+      const uint32_t opened = bvh.nodes[*largest].first;
+      *largest = opened;
+      slots.push_back(opened + 1);
+    }
+    double cost = kNodeCost * area_of(bvh.nodes[n]);
+    for (const uint32_t s : slots) cost += slot(s);
+    return cost;
+  }
+};
+
 /// The cost of the wide tree the build made, under the same model.
 template <typename Node, uint32_t W>
 double wide_tree_cost(const HugePageVector<Node>& nodes) {
@@ -113,26 +158,39 @@ void add_random_triangle(std::mt19937& rng, std::vector<Vec3>& corners, float sp
 }
 
 void check_optimal_collapses(bool sse) {
-  if (sse) ::setenv("LUEUR_BVH_ISA", "sse", 1);
+  // Restored however the test ends: a failed ASSERT below must not leave later tests on the 4-wide tree.
+  std::optional<test::ScopedEnv> isa;
+  if (sse) isa.emplace("LUEUR_BVH_ISA", "sse");
+  constexpr int kScenes = 40;
   std::mt19937 rng(21);
-  int scenes = 0;
-  for (int scene = 0; scene < 40; ++scene) {
+  int greedy_costlier = 0;
+  for (int scene = 0; scene < kScenes; ++scene) {
     // Clusters of small triangles among a few large ones: leaves and openings both have something to win.
     std::vector<Vec3> corners;
-    const int count = 12 + scene % 48;
+    const int count = 24 + scene % 48;
     for (int i = 0; i < count; ++i) add_random_triangle(rng, corners, 10.0f, i % 5 == 0 ? 6.0f : 0.5f);
     const Bvh bvh = build_bvh(corners);
     ASSERT_GT(bvh.triangles.size(), kBvhMaxLeafSize);  // the root is then a wide node, whatever the plan
     const bool eight = !bvh.wide8_nodes.empty();
+    ASSERT_EQ(eight, !sse && bvh_avx2_enabled());
     const Exhaustive exhaustive(bvh, eight ? kBvhWidth8 : kBvhWidth);
     const double best = exhaustive.wide_node(0);
     const double built = eight ? wide_tree_cost<BvhWideNode8, kBvhWidth8>(bvh.wide8_nodes)
                                : wide_tree_cost<BvhWideNode, kBvhWidth>(bvh.wide_nodes);
     EXPECT_NEAR(built, best, 1e-5 * best) << "scene " << scene << ", " << count << " triangles";
-    ++scenes;
+    const double greedy = Greedy{exhaustive}.wide_node(0);
+    EXPECT_GE(greedy, best * (1.0 - 1e-9)) << "the enumeration missed the greedy collapse in scene " << scene;
+    // Well beyond the rounding of float boxes that the tolerance above allows.
+    if (greedy > best * (1.0 + 1e-3)) ++greedy_costlier;
   }
-  ::unsetenv("LUEUR_BVH_ISA");
-  EXPECT_EQ(scenes, 40);
+  // Matching the lowest cost only proves something where a plainer collapse misses it. With 24 triangles and more
+  // the greedy collapse costs more on about half to three quarters of these scenes (fewer on small ones, where the
+  // root holds nearly everything): a collapse that fell back to it would fail the check above on each scene
+  // counted here.
+  EXPECT_GE(greedy_costlier, kScenes / 3)
+      << "only " << greedy_costlier << " of " << kScenes << " scenes tell the lowest-cost collapse from the greedy one";
+  std::cout << "[ collapse ] " << (!sse && bvh_avx2_enabled() ? "8-wide" : "4-wide")
+            << ": the greedy collapse costs more on " << greedy_costlier << " of " << kScenes << " scenes\n";
 }
 
 TEST(BvhCollapse, ReachesTheLowestCostOfAnyCollapse) { check_optimal_collapses(false); }
