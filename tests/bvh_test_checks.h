@@ -1,0 +1,25 @@
+// Checks shared by the BVH suites (test_bvh_*.cpp): the BVH2's and the wide tree's invariants, and the BVH's
+// answers against the brute-force loop on random rays. Depends on bvh, core and bvh_test_scenes.h.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "bvh/bvh.h"
+#include "bvh_test_scenes.h"
+
+namespace lueur::test {
+
+struct RayStats {
+  size_t rays = 0;
+  size_t hits = 0;
+  size_t mismatches = 0;
+};
+
+/// Fires `count` rays at the scene and compares the BVH with the brute-force loop on every one.
+RayStats compare_with_brute_force(const Corners& corners, const Bvh& bvh, size_t count, uint32_t seed);
+
+/// Walks the BVH2 from the root and checks its structure, then the wide tree's; returns the deepest node depth.
+uint32_t check_invariants(const Bvh& bvh, const Corners& corners);
+
+}  // namespace lueur::test
