@@ -1,9 +1,9 @@
 // Queries on Lueur's BVH: the shared ray-triangle test, and the closest-hit and any-hit queries, which run the
-// traversals of bvh_kernels.h on the 4-wide SSE tree here and hand the 8-wide AVX2 tree to bvh_traverse_avx.cpp.
+// traversals of bvh_traversal.h on the 4-wide SSE tree here and hand the 8-wide AVX2 tree to bvh_traverse_avx.cpp.
 // Depends on core (math, ray) and bvh.h only; this is the renderer's hot path, so no allocation and no virtual
 // calls.
 
-#include "bvh/bvh_kernels.h"
+#include "bvh/bvh_traversal.h"
 
 namespace lueur {
 

@@ -1,11 +1,11 @@
-// The traversals of bvh_kernels.h on the 8-wide tree, compiled with AVX2 (this file only; see CMakeLists.txt) and
+// The traversals of bvh_traversal.h on the 8-wide tree, compiled with AVX2 (this file only; see CMakeLists.txt) and
 // called only when the CPU has AVX2 (bvh_avx2_enabled). Triangle groups are still tested four at a time by the shared
 // SSE kernel. Each lane of the 8-wide box test computes the scalar plane distances exactly and combines them
 // conservatively (see Avx): the BVH stays bit-identical to the brute-force loop.
 
 #include <immintrin.h>
 
-#include "bvh/bvh_kernels.h"
+#include "bvh/bvh_traversal.h"
 
 namespace lueur {
 namespace {
