@@ -27,7 +27,8 @@ void run_scene(const SceneCase& scene, uint32_t seed) {
   const uint32_t depth = check_invariants(bvh, scene.corners);
   const RayStats stats = compare_with_brute_force(scene.corners, bvh, scene.rays, seed);
   std::cout << "[ scene    ] " << scene.name << ": " << scene.corners.size() / 3 << " triangles, " << bvh.nodes.size()
-            << " nodes, depth " << depth << ", " << stats.rays << " rays, " << stats.hits << " hits\n";
+            << " nodes, depth " << depth << ", " << stats.rays << " rays, " << stats.hits << " hits, "
+            << stats.misses_bounded_below << " misses that must test nodes below the root\n";
   // Both outcomes must be well represented, or the comparison proves little.
   EXPECT_GT(stats.hits, stats.rays / 10) << scene.name;
   EXPECT_LT(stats.hits, stats.rays - stats.rays / 20) << scene.name;
