@@ -32,16 +32,20 @@ CameraSpec default_camera() {
   return CameraSpec{v.eye, v.target, v.up, v.fovy_degrees};
 }
 
+/// How long the tests watch for something that must not happen (a frame while paused or of an empty image). A
+/// window, not a bound on speed: a slow machine can only make such a check weaker, never fail it.
+constexpr double kWatchSeconds = 0.5;
+
 /// Waits until a snapshot of the tracer's current accumulation with at least `frames` full frames arrives.
 TracerSnapshot wait_for_snapshot(ProgressiveTracer& tracer, uint64_t frames) {
   TracerSnapshot snapshot;
-  EXPECT_TRUE(tracer.wait_for_frames(frames, 120.0));
-  for (int i = 0; i < 2000; ++i) {
-    if (tracer.take_snapshot(snapshot) && snapshot.preview_divisor == 1 && snapshot.film.frames >= frames)
-      return snapshot;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  ADD_FAILURE() << "no snapshot with " << frames << " frames arrived";
+  EXPECT_TRUE(tracer.wait_for_frames(frames, test::kGiveUpSeconds))
+      << "the tracer never reached " << frames << " frames";
+  // The frame count goes up just before the frame is published: wait for the snapshot itself.
+  const bool arrived = test::wait_until([&] {
+    return tracer.take_snapshot(snapshot) && snapshot.preview_divisor == 1 && snapshot.film.frames >= frames;
+  });
+  EXPECT_TRUE(arrived) << "no snapshot with " << frames << " frames arrived";
   return snapshot;
 }
 
@@ -75,16 +79,16 @@ TEST(ProgressiveTracer, ShowsCoarsePreviewsFirstAfterARestart) {
   tracer.set_scene(prepare_scene(make_default_scene()));
   std::vector<int> divisors;
   TracerSnapshot snapshot;
-  for (int i = 0; i < 20000 && (divisors.empty() || divisors.back() != 1); ++i) {
+  // Takes every snapshot it can until the full-resolution frame (the frame limit's one) arrives.
+  const bool full_frame = test::wait_until([&] {
     if (tracer.take_snapshot(snapshot)) {
       divisors.push_back(snapshot.preview_divisor);
       EXPECT_EQ(snapshot.film.width, 128 / snapshot.preview_divisor);
       EXPECT_EQ(snapshot.film.height, 96 / snapshot.preview_divisor);
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  ASSERT_FALSE(divisors.empty());
-  EXPECT_EQ(divisors.back(), 1);
+    return !divisors.empty() && divisors.back() == 1;
+  });
+  ASSERT_TRUE(full_frame) << "no full-resolution snapshot arrived after " << divisors.size() << " previews";
   for (size_t i = 1; i < divisors.size(); ++i) EXPECT_LT(divisors[i], divisors[i - 1]) << "previews get finer";
   // 128x96 has room for all three previews (16x12, 32x24, 64x48); the display may have missed some, the tracer not.
   EXPECT_EQ(snapshot.stats.previews, 3u);
@@ -100,12 +104,14 @@ TEST(ProgressiveTracer, PausesAndResumesAndAChangeRestarts) {
   tracer.set_settings(small_settings(24, 24));
   tracer.set_camera(default_camera());
   tracer.set_scene(prepare_scene(make_default_scene()));
-  ASSERT_TRUE(tracer.wait_for_frames(2, 60.0));
+  ASSERT_TRUE(tracer.wait_for_frames(2, test::kGiveUpSeconds)) << "the tracer never reached 2 frames";
   tracer.set_paused(true);
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // lets a frame in flight finish
+  // Pausing lets the frame in flight finish and starts no other: from here on the count may grow by that one frame
+  // at most, however long the frame takes. Small frames come every few milliseconds unpaused, so a pause that did
+  // not hold would reach two more within the window.
   const uint64_t frames = tracer.stats().frames;
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  EXPECT_EQ(tracer.stats().frames, frames) << "no frame while paused";
+  EXPECT_FALSE(tracer.wait_for_frames(frames + 2, kWatchSeconds)) << "frames kept coming while paused";
+  EXPECT_LE(tracer.stats().frames, frames + 1) << "no frame but the one in flight may finish while paused";
   EXPECT_TRUE(tracer.idle());
 
   const uint64_t generation = tracer.generation();
@@ -117,10 +123,9 @@ TEST(ProgressiveTracer, PausesAndResumesAndAChangeRestarts) {
   tracer.set_settings(changed);
   EXPECT_EQ(tracer.generation(), generation + 1) << "setting the same value again is not a change";
   tracer.set_paused(false);
-  ASSERT_TRUE(tracer.wait_for_frames(1, 60.0));
+  ASSERT_TRUE(tracer.wait_for_frames(1, test::kGiveUpSeconds)) << "no frame after resuming";
   TracerSnapshot snapshot;
-  for (int i = 0; i < 2000 && !tracer.take_snapshot(snapshot); ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  ASSERT_TRUE(test::wait_until([&] { return tracer.take_snapshot(snapshot); })) << "no snapshot after resuming";
   EXPECT_EQ(snapshot.generation, generation + 1);
 }
 
@@ -128,11 +133,15 @@ TEST(ProgressiveTracer, AnEmptySizeIdlesInsteadOfRendering) {
   ProgressiveTracer tracer(2);
   RenderSettings settings = small_settings(0, 0);
   tracer.set_settings(settings);
+  tracer.set_camera(default_camera());
   tracer.set_scene(prepare_scene(make_default_scene()));
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));
   EXPECT_TRUE(tracer.idle());
+  EXPECT_FALSE(tracer.wait_for_frames(1, kWatchSeconds)) << "a frame of an empty image";
   TracerSnapshot snapshot;
-  EXPECT_FALSE(tracer.take_snapshot(snapshot));
+  EXPECT_FALSE(tracer.take_snapshot(snapshot)) << "a snapshot of an empty image";
+  // The same tracer renders once it has a size: it idled for the empty size, not for want of anything else.
+  tracer.set_settings(small_settings(8, 8));
+  EXPECT_TRUE(tracer.wait_for_frames(1, test::kGiveUpSeconds)) << "no frame once the size is not empty";
 }
 
 /// Inside a closed box whose walls all emit `le`, every pixel's Le sum is exactly the same: a snapshot whose pixels
@@ -187,14 +196,9 @@ struct SnapshotChecker {
   }
 };
 
-/// Waits until `counter` exceeds `target`, up to a deadline far beyond any healthy run.
-bool wait_for_count(const std::atomic<int>& counter, int target, double timeout_seconds = 60.0) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_seconds);
-  while (counter.load() <= target) {
-    if (std::chrono::steady_clock::now() > deadline) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  return true;
+/// Waits until `counter` exceeds `target` (false if it never does, after test::kGiveUpSeconds).
+bool wait_for_count(const std::atomic<int>& counter, int target) {
+  return test::wait_until([&] { return counter.load() > target; });
 }
 
 /// A checkpoint inside the storm: lets the tracer run (unpaused, no frame limit, a non-empty image) until the display
@@ -218,7 +222,7 @@ void expect_progress_after_the_storm(ProgressiveTracer& tracer, SnapshotChecker&
   tracer.set_settings(settings);
   tracer.set_frame_limit(0);
   tracer.set_paused(false);
-  EXPECT_TRUE(tracer.wait_for_frames(3, 60.0));
+  EXPECT_TRUE(tracer.wait_for_frames(3, test::kGiveUpSeconds)) << "no progress after the storm";
   EXPECT_TRUE(wait_for_count(checker.verified, checker.verified.load())) << "no snapshot was verified";
 }
 

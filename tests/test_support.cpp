@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -10,6 +11,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <thread>
 
 namespace lueur::test {
 
@@ -81,6 +83,17 @@ ScopedEnv::~ScopedEnv() {
     ::setenv(name_.c_str(), previous_->c_str(), 1);
   else
     ::unsetenv(name_.c_str());
+}
+
+bool wait_until(const std::function<bool()>& condition, double timeout_seconds, double poll_seconds) {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout_seconds));
+  for (;;) {
+    if (condition()) return true;
+    if (Clock::now() > deadline) return false;
+    std::this_thread::sleep_for(std::chrono::duration<double>(poll_seconds));
+  }
 }
 
 Scene make_closed_emitting_box(float h, Vec3 rho, Vec3 le) {

@@ -1,7 +1,8 @@
 // Helpers shared by the test suites: temporary directories, running the lueur executable, file reading, scoped
-// environment variables.
+// environment variables, waiting for events.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,6 +48,15 @@ class ScopedEnv {
   std::string name_;
   std::optional<std::string> previous_;
 };
+
+/// How long a test waits for an event before it gives up. Only there so that a hang fails instead of stalling
+/// the suite: far beyond any healthy run on a loaded machine or under sanitizers, never a bound on speed.
+inline constexpr double kGiveUpSeconds = 120.0;
+
+/// Polls `condition` every `poll_seconds` until it holds (true) or `timeout_seconds` pass (false): for waiting on
+/// an event the code under test gives no signal for. The timeout only keeps a hang from stalling the suite.
+bool wait_until(const std::function<bool()>& condition, double timeout_seconds = kGiveUpSeconds,
+                double poll_seconds = 0.001);
 
 }  // namespace lueur::test
 
