@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Display figures of the real window under Xvfb (a benchmark, not a test): the interval between displayed frames
-# while the tracer works (median and worst), and the latency from a camera change to the first displayed frame of
-# the new view. Usage: scripts/bench-window.sh [WIDTHxHEIGHT] [extra lueur options]
+# while the tracer works (median and worst) and about how many are displayed during one traced frame, and the
+# latency from a camera change to the first displayed frame of the new view.
+# Usage: scripts/bench-window.sh [WIDTHxHEIGHT] [extra lueur options]
 # LUEUR_EXE=path/to/lueur measures that executable instead of building this checkout (before/after figures).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
@@ -34,5 +35,6 @@ lat = s["restart_latency_ms"][-10:]
 print("frame interval while tracing: median %.1f ms, worst %.1f ms (last 600 frames)" % (s["frame_interval_ms"]["median"], s["frame_interval_ms"]["worst"]))
 print("camera change -> first frame of the new view: median %.1f ms, worst %.1f ms over %d drags" % (statistics.median(lat), max(lat), len(lat)))
 print("tracer: last frame %.0f ms, %d frames" % (1e3 * s["last_frame_seconds"], s["frames"]))
+print("frames displayed during the last traced frame: about %.0f (a display that waited for the tracer would show 1)" % (1e3 * s["last_frame_seconds"] / s["frame_interval_ms"]["median"]))
 PY
 ' "$LUEUR_EXE" "$size" "$state" "$@"
