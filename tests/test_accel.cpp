@@ -117,9 +117,7 @@ Film render(const TracedScene& traced, const RenderSettings& settings, int frame
   Film film;
   film.reset(settings);
   ThreadPool pool(threads);
-  const DefaultView view;
-  const Camera camera =
-      make_camera({view.eye, view.target, view.up, view.fovy_degrees}, settings.width, settings.height);
+  const Camera camera = make_camera(default_scene_camera(), settings.width, settings.height);
   for (int f = 0; f < frames; ++f) render_frame(traced, camera, settings, film, pool);
   return film;
 }

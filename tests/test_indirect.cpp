@@ -115,8 +115,7 @@ std::shared_ptr<const TracedScene> default_traced() {
 }
 
 CameraSpec default_view() {
-  const DefaultView v;
-  return {v.eye, v.target, v.up, v.fovy_degrees};
+  return default_scene_camera();
 }
 
 TEST(ReuseModes, AgreeWithinNoiseOnDiffuseSurfaces) {

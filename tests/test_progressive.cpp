@@ -28,8 +28,7 @@ RenderSettings small_settings(int w, int h) {
 }
 
 CameraSpec default_camera() {
-  const DefaultView v;
-  return CameraSpec{v.eye, v.target, v.up, v.fovy_degrees};
+  return default_scene_camera();
 }
 
 /// How long the tests watch for something that must not happen (a frame while paused or of an empty image). A

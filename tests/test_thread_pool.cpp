@@ -121,12 +121,11 @@ TEST(ThreadPool, BackgroundWorkersRunBelowTheCallersPriority) {
 TEST(CancelledFrame, LeavesTheFilmUntouchedWhenCancelledFromAnotherThread) {
   Scene scene = make_default_scene();
   const std::shared_ptr<const TracedScene> traced = prepare_scene(std::move(scene));
-  const DefaultView view;
   RenderSettings settings;
   settings.width = settings.height = 96;
   settings.enabled = {true, true, true, true};
   settings.l1_rays = settings.l2_rays = 4;
-  const Camera camera = make_camera({view.eye, view.target, view.up, view.fovy_degrees}, 96, 96);
+  const Camera camera = make_camera(default_scene_camera(), 96, 96);
   ThreadPool pool(3);
   Film film;
   film.reset(settings);

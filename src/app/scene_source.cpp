@@ -15,8 +15,7 @@ OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspec
   if (path.empty()) {
     scene = make_default_scene();
     if (smooth_normals) compute_smooth_normals(scene);
-    const DefaultView view;
-    opened.default_view = CameraSpec{view.eye, view.target, view.up, view.fovy_degrees};
+    opened.default_view = default_scene_camera();
   } else {
     stage("reading " + path);
     LoadOptions load_options;

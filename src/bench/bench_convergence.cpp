@@ -99,8 +99,7 @@ Json run_convergence(const ConvergenceOptions& o, std::FILE* log) {
   compute_smooth_normals(scene);
   const auto traced = prepare_scene(std::move(scene));
   ThreadPool pool(o.threads);
-  const DefaultView view;
-  const Setup setup{*traced, make_camera({view.eye, view.target, view.up, view.fovy_degrees}, o.width, o.height), pool};
+  const Setup setup{*traced, make_camera(default_scene_camera(), o.width, o.height), pool};
   const std::string size = std::to_string(o.width) + "x" + std::to_string(o.height);
   Json results = Json::array();
 

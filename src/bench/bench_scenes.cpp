@@ -134,8 +134,7 @@ std::vector<BenchScene> load_bench_scenes(bool quick, const std::string& shared_
     b.name = "default";
     b.scene = make_default_scene();
     compute_smooth_normals(b.scene);
-    const DefaultView view;
-    b.view = CameraSpec{view.eye, view.target, view.up, view.fovy_degrees};
+    b.view = default_scene_camera();
     b.lights = b.scene.emitters;
     scenes.push_back(std::move(b));
   }

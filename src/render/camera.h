@@ -2,18 +2,10 @@
 // Depends on core only.
 #pragma once
 
+#include "core/camera_spec.h"
 #include "core/ray.h"
 
 namespace lueur {
-
-/// How the user specifies a view.
-struct CameraSpec {
-  Vec3 eye{0.0f, 0.0f, 1.0f};
-  Vec3 target{0.0f};
-  Vec3 up{0.0f, 1.0f, 0.0f};
-  float fovy_degrees = 45.0f;
-  bool operator==(const CameraSpec&) const = default;
-};
 
 /// A camera looking at the bounding box from its +z side, far enough that the whole box fits the view.
 CameraSpec frame_box(const Box3& box, float fovy_degrees = 45.0f, float aspect = 1.0f);

@@ -3,6 +3,7 @@
 // light-sampling strategies visibly differ. Depends on the scene layer only.
 #pragma once
 
+#include "core/camera_spec.h"
 #include "scene/scene.h"
 
 namespace lueur {
@@ -11,12 +12,10 @@ namespace lueur {
 /// without shading normals: smoothing is applied like for any loaded scene. Emitters are collected.
 Scene make_default_scene();
 
-/// The published Cornell box camera: eye (278, 273, -800) looking along +z, 39.3 degrees vertical field of view.
-struct DefaultView {
-  Vec3 eye{278.0f, 273.0f, -800.0f};
-  Vec3 target{278.0f, 273.0f, 0.0f};
-  Vec3 up{0.0f, 1.0f, 0.0f};
-  float fovy_degrees = 39.3077f;  // 2 atan(12.5 / 35): a 25 mm film behind a 35 mm lens
-};
+/// The published Cornell box camera: eye (278, 273, -800) looking along +z, 39.3 degrees vertical field of view
+/// (2 atan(12.5 / 35): a 25 mm film behind a 35 mm lens).
+inline CameraSpec default_scene_camera() {
+  return CameraSpec{Vec3(278.0f, 273.0f, -800.0f), Vec3(278.0f, 273.0f, 0.0f), Vec3(0.0f, 1.0f, 0.0f), 39.3077f};
+}
 
 }  // namespace lueur
