@@ -1,17 +1,17 @@
 // The renderer as a whole: determinism across thread counts, strategies agreeing in expectation, the embedded
 // default scene against its OBJ copy in assets/, and the image encoders.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
 #include "core/atomic_file.h"
 #include "image/image_output.h"
 #include "render/renderer.h"
 #include "scene/default_scene.h"
 #include "scene/obj_loader.h"
 #include "test_support.h"
-
-#include <gtest/gtest.h>
-
-#include <cmath>
-#include <cstring>
-#include <limits>
 
 namespace lueur {
 namespace {
@@ -64,7 +64,8 @@ TEST(Render, EveryLightStrategyHasTheSameExpectedImage) {
   settings.width = settings.height = 32;
   settings.l1_rays = 16;
   std::vector<double> means;
-  for (const LightStrategy s : {LightStrategy::kAll, LightStrategy::kUniform, LightStrategy::kArea, LightStrategy::kPower}) {
+  for (const LightStrategy s :
+       {LightStrategy::kAll, LightStrategy::kUniform, LightStrategy::kArea, LightStrategy::kPower}) {
     settings.lights = s;
     const Film film = render_default(*traced, settings, s == LightStrategy::kAll ? 8 : 64, 2);
     const Image l1 = pass_average(film, Pass::kL1);
@@ -180,7 +181,7 @@ TEST(ImageOutput, UnwritablePathLeavesNothingBehind) {
 TEST(Tonemap, QuantisesLikeTheDisplay) {
   EXPECT_EQ(quantize_unorm8(display_transform(Vec3(0.0f), {}).r), 0);
   EXPECT_EQ(quantize_unorm8(display_transform(Vec3(1.0f), {}).r), 255);
-  EXPECT_EQ(quantize_unorm8(display_transform(Vec3(0.5f), {}).r), 188);  // sRGB(0.5) = 0.7354
+  EXPECT_EQ(quantize_unorm8(display_transform(Vec3(0.5f), {}).r), 188);                       // sRGB(0.5) = 0.7354
   EXPECT_EQ(quantize_unorm8(display_transform(Vec3(0.25f), {1.0f, ToneMap::kNone}).r), 188);  // one stop up
   EXPECT_NEAR(display_transform(Vec3(1.0f), {0.0f, ToneMap::kReinhard}).r, linear_to_srgb(0.5f), 1e-6f);
   EXPECT_EQ(quantize_unorm8(std::nanf("")), 0);

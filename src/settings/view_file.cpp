@@ -12,6 +12,17 @@ namespace lueur {
 
 using nlohmann::json;
 
+namespace {
+
+bool is_setting_key(const std::string& key) {
+  if (key == "lueur_view") return true;
+  for (const setting_rows::Row& row : setting_rows::rows())
+    if (std::find(row.json_keys.begin(), row.json_keys.end(), key) != row.json_keys.end()) return true;
+  return false;
+}
+
+}  // namespace
+
 std::string view_to_json(const Settings& settings) {
   json root = {{"lueur_view", 1}};
   for (const setting_rows::Row& row : setting_rows::rows()) row.write_json(settings, root);
@@ -23,13 +34,8 @@ Settings view_from_json(const std::string& text, const Settings& defaults) {
   if (root.is_discarded()) throw ViewFileError("view file: not valid JSON");
   if (!root.is_object() || !root.contains("lueur_view"))
     throw ViewFileError("view file: not a Lueur view (no 'lueur_view')");
-  for (const auto& [key, value] : root.items()) {
-    const auto& all = setting_rows::rows();
-    const bool known = key == "lueur_view" || std::any_of(all.begin(), all.end(), [&](const setting_rows::Row& row) {
-                         return std::find(row.json_keys.begin(), row.json_keys.end(), key) != row.json_keys.end();
-                       });
-    if (!known) throw ViewFileError("view file: unknown setting '" + key + "'");
-  }
+  for (const auto& item : root.items())
+    if (!is_setting_key(item.key())) throw ViewFileError("view file: unknown setting '" + item.key() + "'");
   Settings settings = defaults;
   for (const setting_rows::Row& row : setting_rows::rows()) {
     try {

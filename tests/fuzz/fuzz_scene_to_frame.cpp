@@ -4,19 +4,19 @@
 // strategy, reuse mode and normals, so every branch of the renderer is reachable.
 // Refusal (SceneError) is a correct outcome; any other exception, a crash, a sanitizer report, a leak, a hang
 // or a non-finite value in the film is a finding. Run it with scripts/fuzz.sh.
-#include "render/camera.h"
-#include "render/film.h"
-#include "image/image_output.h"
-#include "render/renderer.h"
-#include "render/thread_pool.h"
-#include "render/traced_scene.h"
-#include "scene/obj_loader.h"
-
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <string>
 #include <string_view>
+
+#include "image/image_output.h"
+#include "render/camera.h"
+#include "render/film.h"
+#include "render/renderer.h"
+#include "render/thread_pool.h"
+#include "render/traced_scene.h"
+#include "scene/obj_loader.h"
 
 namespace {
 
