@@ -171,6 +171,24 @@ TEST_F(Cli, RunScriptTakesTheUsersOptions) {
   EXPECT_EQ(be32(20), 6u);
 }
 
+// A time limit stops after the frame in flight; the image then holds the frames done, and renders again exactly
+// from them.
+TEST_F(Cli, TimeLimitStopsEarlyAndTheImageSaysHowManyFrames) {
+  const std::string limited = dir_ + "/limited.pfm", again = dir_ + "/again.pfm";
+  const test::CommandResult r =
+      test::run_lueur("--headless --size 16x16 --frames 1000000 --time-limit 0.2 --out '" + limited + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const size_t at = r.output.find("time limit of 0.2 s reached after ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const int frames = std::stoi(r.output.substr(at + std::string("time limit of 0.2 s reached after ").size()));
+  EXPECT_GE(frames, 1);
+  EXPECT_LT(frames, 1000000);
+  const test::CommandResult full =
+      test::run_lueur("--headless --size 16x16 --frames " + std::to_string(frames) + " --out '" + again + "'");
+  ASSERT_EQ(full.exit_code, 0) << full.output;
+  EXPECT_EQ(test::read_file(limited), test::read_file(again));
+}
+
 TEST_F(Cli, ExportedDefaultSceneMatchesTheCommittedAsset) {
   const std::string out = dir_ + "/cornell-apple.obj";
   const test::CommandResult r = test::run_lueur("--export-default-scene '" + out + "'");

@@ -1,11 +1,11 @@
 // L1 against closed forms: the emitting closed box (L1 = rho Le at every pixel, every strategy) and the irradiance
 // of a rectangular light from Lambert's polygon formula. Tolerances come from the estimator's own standard error.
+#include <gtest/gtest.h>
+
 #include "render/brdf.h"
 #include "render/direct_light.h"
 #include "render/renderer.h"
 #include "test_support.h"
-
-#include <gtest/gtest.h>
 
 namespace lueur {
 namespace {
@@ -19,11 +19,11 @@ struct Estimate {
 Estimate estimate_with_error(const TracedScene& traced, const SurfacePoint& sp, DirectLightOptions options, int n,
                              uint64_t seed) {
   options.rays = 1;
-  Pcg32 rng(seed, 17);
+  PixelSampler sampler(SamplerKind::kIndependent, seed, 17, 0, RngPurpose::kDirect);  // independent samples
   uint64_t rays = 0;
   glm::dvec3 sum(0.0), sum2(0.0);
   for (int i = 0; i < n; ++i) {
-    const glm::dvec3 x(estimate_direct_light(traced, sp, options, rng, rays));
+    const glm::dvec3 x(estimate_direct_light(traced, sp, options, sampler, static_cast<uint64_t>(i), rays));
     sum += x;
     sum2 += x * x;
   }
@@ -87,17 +87,21 @@ TEST_P(ClosedBox, RenderedFilmAveragesToRhoLe) {
   film.reset(settings);
   ThreadPool pool(2);
   const Camera camera = make_camera({Vec3(0.0f), Vec3(0.0f, 0.0f, -1.0f), Vec3(0, 1, 0), 70.0f}, 24, 24);
-  for (int f = 0; f < 32; ++f) render_frame(*traced, camera, settings, film, pool);
-  const Image l1 = pass_average(film, Pass::kL1);
-  const Image le_pass = pass_average(film, Pass::kLe);
-  double mean = 0.0;
-  for (size_t i = 0; i < l1.rgb.size(); ++i) {
-    mean += l1.rgb[i];
-    EXPECT_FLOAT_EQ(le_pass.rgb[i], 1.5f);  // every pixel sees an emitting wall head-on
+  for (const SamplerKind sampler : {SamplerKind::kIndependent, SamplerKind::kSobol}) {
+    settings.sampler = sampler;
+    film.reset(settings);
+    for (int f = 0; f < 32; ++f) render_frame(*traced, camera, settings, film, pool);
+    const Image l1 = pass_average(film, Pass::kL1);
+    const Image le_pass = pass_average(film, Pass::kLe);
+    double mean = 0.0;
+    for (size_t i = 0; i < l1.rgb.size(); ++i) {
+      mean += l1.rgb[i];
+      EXPECT_FLOAT_EQ(le_pass.rgb[i], 1.5f);  // every pixel sees an emitting wall head-on
+    }
+    mean /= static_cast<double>(l1.rgb.size());
+    // 24 x 24 x 3 channels x 256 samples each: the image mean is known to well under 1%.
+    EXPECT_NEAR(mean, 0.9, 0.009) << kSamplerKindNames[static_cast<size_t>(sampler)];
   }
-  mean /= static_cast<double>(l1.rgb.size());
-  // 24 x 24 x 3 channels x 256 samples each: the image mean is known to well under 1%.
-  EXPECT_NEAR(mean, 0.9, 0.009);
 }
 
 INSTANTIATE_TEST_SUITE_P(Lights, ClosedBox,
@@ -122,8 +126,10 @@ double lambert_polygon_irradiance(const std::vector<glm::dvec3>& polygon, const 
 TEST(DirectLight, MatchesLambertPolygonFormulaUnderARectangularLight) {
   const float w = 1.0f, h = 0.6f, height = 1.0f, rho = 0.8f, le = 5.0f;
   const auto traced = prepare_scene(test::make_rect_light_over_floor(w, h, height, Vec3(rho), Vec3(le)));
-  const std::vector<glm::dvec3> light = {{-0.5 * w, height, -0.5 * h}, {0.5 * w, height, -0.5 * h},
-                                         {0.5 * w, height, 0.5 * h}, {-0.5 * w, height, 0.5 * h}};
+  const std::vector<glm::dvec3> light = {{-0.5 * w, height, -0.5 * h},
+                                         {0.5 * w, height, -0.5 * h},
+                                         {0.5 * w, height, 0.5 * h},
+                                         {-0.5 * w, height, 0.5 * h}};
   for (const LightStrategy strategy : {LightStrategy::kAll, LightStrategy::kArea}) {
     for (const Vec3 p : {Vec3(0.0f), Vec3(0.3f, 0.0f, 0.1f), Vec3(1.2f, 0.0f, -0.4f), Vec3(-2.0f, 0.0f, 1.5f)}) {
       // A ray straight down onto the floor at p.

@@ -27,9 +27,7 @@ RenderSettings small_settings(int w, int h) {
   return s;
 }
 
-CameraSpec default_camera() {
-  return default_scene_camera();
-}
+CameraSpec default_camera() { return default_scene_camera(); }
 
 /// How long the tests watch for something that must not happen (a frame while paused or of an empty image). A
 /// window, not a bound on speed: a slow machine can only make such a check weaker, never fail it.
@@ -68,6 +66,23 @@ TEST(ProgressiveTracer, AccumulatesTheSameBytesAsTheHeadlessRenderer) {
   for (int f = 0; f < 3; ++f) render_frame(*traced, camera, settings, film, pool);
   for (int l = 0; l < kLayerCount; ++l)
     EXPECT_EQ(snapshot.film.sums[static_cast<size_t>(l)], film.sums[static_cast<size_t>(l)]) << kLayerNames[l];
+}
+
+TEST(ProgressiveTracer, StopsOnceItsTimeLimitIsSpentAndGoesOnWhenItIsRaised) {
+  const auto traced = prepare_scene(make_default_scene());
+  ProgressiveTracer tracer(2);
+  tracer.set_previews(false);
+  tracer.set_time_limit(1e-9);  // spent by the first frame
+  tracer.set_settings(small_settings(40, 32));
+  tracer.set_camera(default_camera());
+  tracer.set_scene(traced);
+  wait_for_snapshot(tracer, 1);
+  ASSERT_TRUE(test::wait_until([&] { return tracer.idle(); })) << "the time limit never stopped the tracer";
+  const uint64_t frames = tracer.stats().frames;
+  EXPECT_EQ(frames, 1u) << "only the frame in flight when the budget ran out";
+  tracer.set_time_limit(0.0);
+  EXPECT_FALSE(tracer.idle());
+  wait_for_snapshot(tracer, frames + 2);
 }
 
 TEST(ProgressiveTracer, ShowsCoarsePreviewsFirstAfterARestart) {

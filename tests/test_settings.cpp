@@ -31,6 +31,7 @@ Settings unusual_settings() {
   s.render.ao_rays = 2;
   s.render.ao_radius = 123.456f;
   s.render.seed = 18446744073709551557ull;  // beyond 2^53: must survive text and JSON exactly
+  s.render.sampler = SamplerKind::kIndependent;
   s.weights = {0.5f, 0.25f, 2.0f, 1.5f};
   s.layer = Layer::kL1;
   s.display = {1.25f, ToneMap::kAces};
@@ -38,6 +39,7 @@ Settings unusual_settings() {
   s.accel = AccelKind::kEmbree;
   s.frames = 2;
   s.frame_limit = 100;
+  s.time_limit = 600.5f;  // never reached by the renders below
   return s;
 }
 

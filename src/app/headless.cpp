@@ -57,8 +57,8 @@ struct RunFigures {
 };
 
 /// The PNG through the display shaders of an off-screen EGL or OSMesa context, with the panel if asked.
-void write_gl_screenshot(const AppOptions& options, const Film& film, const TracedScene& traced,
-                         const RunFigures& figures) {
+void write_gl_screenshot(const AppOptions& options, const Settings& described, const Film& film,
+                         const TracedScene& traced, const RunFigures& figures) {
   PanelModel panel;
   if (options.ui) {
     panel.settings = options.settings;
@@ -83,7 +83,7 @@ void write_gl_screenshot(const AppOptions& options, const Film& film, const Trac
   }
   std::fprintf(stderr, "lueur: display path: %s\n", shot.context.c_str());
   write_file_atomically(options.out_path, encode_png_rgb8(shot.rgb, shot.width, shot.height,
-                                                          describe_options(options.scene_path, options.settings)));
+                                                          describe_options(options.scene_path, described)));
 }
 
 }  // namespace
@@ -118,6 +118,8 @@ int run_headless(const AppOptions& options) {
   uint64_t rays = 0, bounce_hits = 0, reused = 0, dropped = 0;
   double l2_seconds = 0.0;
   const bool tty = ::isatty(STDERR_FILENO);
+  const double time_limit = options.settings.time_limit;
+  int done = 0;
   for (int f = 0; f < frames; ++f) {
     const FrameResult frame = render_frame(traced, camera, settings, film, pool);
     rays += frame.rays;
@@ -126,15 +128,24 @@ int run_headless(const AppOptions& options) {
     dropped += frame.dropped_samples;
     l2_seconds += frame.l2_seconds;
     const double elapsed = seconds_since(start);
-    if (f + 1 == frames || std::chrono::duration<double>(Clock::now() - last_progress).count() > 0.5) {
+    done = f + 1;
+    const bool out_of_time = time_limit > 0.0 && elapsed >= time_limit;
+    if (done == frames || out_of_time || std::chrono::duration<double>(Clock::now() - last_progress).count() > 0.5) {
       last_progress = Clock::now();
       const double left = elapsed / (f + 1) * (frames - f - 1);
       std::fprintf(stderr, "%slueur: frame %d/%d, %.1f s elapsed, about %.1f s left%s", tty ? "\r" : "", f + 1, frames,
                    elapsed, left, tty ? "   " : "\n");
     }
+    if (out_of_time) break;
   }
   const double elapsed = seconds_since(start);
   if (tty) std::fprintf(stderr, "\n");
+  if (done < frames)
+    std::fprintf(stderr, "lueur: time limit of %g s reached after %d of %d frames\n", time_limit, done, frames);
+  // The image holds the settings that render it again: the frames done, not the time they took here.
+  Settings described = options.settings;
+  described.frames = done;
+  described.time_limit = 0.0f;
 
   if (dropped > 0)
     std::fprintf(stderr,
@@ -142,15 +153,14 @@ int run_headless(const AppOptions& options) {
                  "(a scene of extreme scale or emission)\n",
                  static_cast<unsigned long long>(dropped));
   if (options.gl != HeadlessGl::kNone) {
-    write_gl_screenshot(options, film, traced, {elapsed, rays, l2_seconds, bounce_hits, reused});
+    write_gl_screenshot(options, described, film, traced, {elapsed, rays, l2_seconds, bounce_hits, reused});
   } else {
     // The EXR holds every rendered layer; PNG and PFM show the combined image or the chosen --view.
     write_image(options.out_path, shown_image(film, settings.enabled, options.settings.weights, layer),
-                film_layer_images(film), options.settings.display,
-                describe_options(options.scene_path, options.settings));
+                film_layer_images(film), options.settings.display, describe_options(options.scene_path, described));
   }
 
-  std::fprintf(stderr, "lueur: %d frames in %.2f s, %.1f M rays traced (%.2f Mrays/s)\n", frames, elapsed,
+  std::fprintf(stderr, "lueur: %d frames in %.2f s, %.1f M rays traced (%.2f Mrays/s)\n", done, elapsed,
                static_cast<double>(rays) * 1e-6, elapsed > 0.0 ? static_cast<double>(rays) * 1e-6 / elapsed : 0.0);
   if (settings.pass_enabled(Pass::kL2))
     std::fprintf(stderr, "lueur: L2 took %.2f s; %.1f%% of its %.1f M bounce hits reused L1 (--reuse %s)\n", l2_seconds,

@@ -20,11 +20,11 @@
 #include "app/scene_loading.h"
 #include "core/atomic_file.h"
 #include "display/display_pipeline.h"
-#include "ui/camera_controls.h"
 #include "image/image_output.h"
 #include "render/progressive_tracer.h"
 #include "settings/setting_table.h"
 #include "settings/view_file.h"
+#include "ui/camera_controls.h"
 #include "ui/imgui_gl.h"
 #include "ui/mouse_buttons.h"
 #include "ui/panel.h"
@@ -318,6 +318,7 @@ class Viewer {
     }
     tracer_.set_paused(panel_.paused);
     tracer_.set_frame_limit(panel_.settings.frame_limit);
+    tracer_.set_time_limit(panel_.settings.time_limit);
   }
 
   void draw() {

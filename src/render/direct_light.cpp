@@ -46,7 +46,7 @@ Vec3 sample_emitter(const TracedScene& traced, const SurfacePoint& sp, uint32_t 
 }  // namespace
 
 Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, const DirectLightOptions& options,
-                           Pcg32& rng, uint64_t& rays_traced, Vec3* diffuse_part) {
+                           PixelSampler& sampler, uint64_t first_sample, uint64_t& rays_traced, Vec3* diffuse_part) {
   const LightTable& table = traced.lights;
   if (diffuse_part) *diffuse_part = Vec3(0.0f);
   if (table.empty() || options.rays <= 0) return Vec3(0.0f);
@@ -62,16 +62,18 @@ Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, co
     diffuse_sum += arriving * f_diffuse;
   };
   for (int s = 0; s < options.rays; ++s) {
+    sampler.start_sample(first_sample + static_cast<uint64_t>(s));
     Vec3 wi(0.0f);
     if (options.strategy == LightStrategy::kAll) {
       for (uint32_t i = 0; i < table.size(); ++i) {
-        const float u1 = rng.next_float(), u2 = rng.next_float();
-        accumulate(sample_emitter(traced, sp, i, u1, u2, wi, rays_traced), wi);
+        const Vec2 u = sampler.get_2d();
+        accumulate(sample_emitter(traced, sp, i, u.x, u.y, wi, rays_traced), wi);
       }
     } else {
-      const LightChoice choice = choose_light(table, options.strategy, rng.next_float());
-      const float u1 = rng.next_float(), u2 = rng.next_float();
-      if (choice.pmf > 0.0f) accumulate(sample_emitter(traced, sp, choice.index, u1, u2, wi, rays_traced) / choice.pmf, wi);
+      const LightChoice choice = choose_light(table, options.strategy, sampler.get_1d());
+      const Vec2 u = sampler.get_2d();
+      if (choice.pmf > 0.0f)
+        accumulate(sample_emitter(traced, sp, choice.index, u.x, u.y, wi, rays_traced) / choice.pmf, wi);
     }
   }
   const float inv = 1.0f / static_cast<float>(options.rays);

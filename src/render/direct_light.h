@@ -2,7 +2,7 @@
 // Depends on the traced scene and the BRDF.
 #pragma once
 
-#include "core/rng.h"
+#include "core/pixel_sampler.h"
 #include "render/settings.h"
 #include "render/traced_scene.h"
 
@@ -10,15 +10,18 @@ namespace lueur {
 
 struct DirectLightOptions {
   LightStrategy strategy = LightStrategy::kArea;
-  int rays = 16;           ///< samples; with kAll each sample sends one shadow ray to every emitter
+  int rays = 16;  ///< samples; with kAll each sample sends one shadow ray to every emitter
   float blinn_k = 0.7f;
   bool specular_only = false;  ///< evaluate only the view-dependent part of the BRDF (BRDF minus its diffuse part)
 };
 
-/// Radiance reflected towards `sp.wo` from the emitters, averaged over `options.rays` samples.
-/// Unbiased for every strategy. Adds the shadow rays it traced to `rays_traced`. When `diffuse_part` is given it
-/// receives, from the same samples, the part reflected by the view-independent term of the BRDF alone.
+/// Radiance reflected towards `sp.wo` from the emitters, averaged over `options.rays` samples: samples
+/// `first_sample` onwards of `sampler`, each drawing the light choice (1D) and the point on the light (2D), or with
+/// kAll one point per emitter. Unbiased for every strategy. Adds the shadow rays it traced to `rays_traced`. When
+/// `diffuse_part` is given it receives, from the same samples, the part reflected by the view-independent term of
+/// the BRDF alone.
 Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, const DirectLightOptions& options,
-                           Pcg32& rng, uint64_t& rays_traced, Vec3* diffuse_part = nullptr);
+                           PixelSampler& sampler, uint64_t first_sample, uint64_t& rays_traced,
+                           Vec3* diffuse_part = nullptr);
 
 }  // namespace lueur

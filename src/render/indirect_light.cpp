@@ -36,9 +36,9 @@ namespace {
 
 /// A direction on the cosine-weighted hemisphere around the shading normal, or false when it dips below the
 /// geometric surface (such rays would leak through it and count as zero).
-bool sample_bounce_ray(const SurfacePoint& sp, Pcg32& rng, Ray& ray) {
-  const float u1 = rng.next_float(), u2 = rng.next_float();
-  const Vec3 local = sample_cosine_hemisphere(u1, u2);
+bool sample_bounce_ray(const SurfacePoint& sp, PixelSampler& sampler, Ray& ray) {
+  const Vec2 u = sampler.get_2d();
+  const Vec3 local = sample_cosine_hemisphere(u.x, u.y);
   const Vec3 wi = Frame::from_normal(sp.shading_normal).to_world(local);
   if (!(local.z > 0.0f && glm::dot(wi, sp.geometric_normal) > 0.0f)) return false;
   ray.origin = offset_origin(sp.position, sp.geometric_normal, wi);
@@ -59,8 +59,9 @@ void ScreenBuffer::resize(int w, int h) {
 }
 
 IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& camera, const ScreenBuffer& screen,
-                                       const SurfacePoint& sp, const RenderSettings& settings, Pcg32& bounce_rng,
-                                       Pcg32& recompute_rng, uint64_t& rays_traced) {
+                                       const SurfacePoint& sp, const RenderSettings& settings,
+                                       PixelSampler& bounce_sampler, PixelSampler& recompute_sampler,
+                                       uint64_t first_sample, uint64_t& rays_traced) {
   IndirectResult result;
   if (settings.l2_rays <= 0) return result;
   const Scene& scene = traced.scene;
@@ -72,8 +73,11 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
   recompute.blinn_k = settings.blinn_k;
 
   for (int s = 0; s < settings.l2_rays; ++s) {
+    const uint64_t bounce_sample = first_sample + static_cast<uint64_t>(s);
+    const uint64_t first_shadow_sample = bounce_sample * static_cast<uint64_t>(recompute.rays);
+    bounce_sampler.start_sample(bounce_sample);
     Ray bounce;
-    if (!sample_bounce_ray(sp, bounce_rng, bounce)) continue;
+    if (!sample_bounce_ray(sp, bounce_sampler, bounce)) continue;
     const Vec3& wi = bounce.dir;
     ++rays_traced;
     const Hit hit = intersect_closest(traced.accel, bounce);
@@ -96,12 +100,13 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
           if (mq.has_specular() || settings.blinn_k < 1.0f) {
             DirectLightOptions rest = recompute;
             rest.specular_only = true;
-            l1_q += estimate_direct_light(traced, q, rest, recompute_rng, rays_traced);
+            l1_q += estimate_direct_light(traced, q, rest, recompute_sampler, first_shadow_sample, rays_traced);
           }
         }
       }
     }
-    if (!reused) l1_q = estimate_direct_light(traced, q, recompute, recompute_rng, rays_traced);
+    if (!reused)
+      l1_q = estimate_direct_light(traced, q, recompute, recompute_sampler, first_shadow_sample, rays_traced);
 
     // f cos / pdf with pdf = cos / pi.
     const Vec3 contribution = eval_brdf(material, sp.shading_normal, wi, sp.wo, settings.blinn_k) * kPi * l1_q;
@@ -119,13 +124,14 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
   return result;
 }
 
-Vec3 estimate_ambient_occlusion(const TracedScene& traced, const SurfacePoint& sp, int rays, float radius, Pcg32& rng,
-                                uint64_t& rays_traced) {
+Vec3 estimate_ambient_occlusion(const TracedScene& traced, const SurfacePoint& sp, int rays, float radius,
+                                PixelSampler& sampler, uint64_t first_sample, uint64_t& rays_traced) {
   if (rays <= 0) return Vec3(0.0f);
   int open = 0;
   for (int s = 0; s < rays; ++s) {
+    sampler.start_sample(first_sample + static_cast<uint64_t>(s));
     Ray ray;
-    if (!sample_bounce_ray(sp, rng, ray)) continue;
+    if (!sample_bounce_ray(sp, sampler, ray)) continue;
     ray.tmax = radius;
     ++rays_traced;
     if (!intersect_any(traced.accel, ray)) ++open;

@@ -2,12 +2,12 @@
 // Depends on the traced scene, the camera and the direct-light estimator.
 #pragma once
 
-#include "core/rng.h"
+#include <vector>
+
+#include "core/pixel_sampler.h"
 #include "render/camera.h"
 #include "render/settings.h"
 #include "render/traced_scene.h"
-
-#include <vector>
 
 namespace lueur {
 
@@ -16,8 +16,8 @@ struct ScreenBuffer {
   int width = 0, height = 0;
   std::vector<uint32_t> triangle;  ///< kNoHit where the pixel sees nothing
   std::vector<Vec3> position;
-  std::vector<Vec3> l1;            ///< this frame's L1 toward the camera (diffuse part only with reuse_diffuse_only)
-  std::vector<Vec3> l1_average;    ///< running L1 average including this frame (reuse = average only)
+  std::vector<Vec3> l1;          ///< this frame's L1 toward the camera (diffuse part only with reuse_diffuse_only)
+  std::vector<Vec3> l1_average;  ///< running L1 average including this frame (reuse = average only)
   void resize(int w, int h);
 };
 
@@ -34,17 +34,20 @@ struct IndirectResult {
 int find_reusable_pixel(const Camera& camera, const ScreenBuffer& screen, uint32_t triangle, const Vec3& q,
                         const Vec3& q_normal);
 
-/// L2 at `sp` with settings.l2_rays cosine-weighted rays (Dutré formula 35). Where a ray hits q, L1(q) toward p is
-/// taken from the pixel q projects to when that pixel's primary ray hit q (find_reusable_pixel), otherwise recomputed with settings.recompute_rays() shadow rays. Emission at q is not added: it is
-/// already L1 at p.
+/// L2 at `sp` with settings.l2_rays cosine-weighted rays (Dutré formula 35), samples `first_sample` onwards of
+/// `bounce_sampler`. Where a ray hits q, L1(q) toward p is taken from the pixel q projects to when that pixel's
+/// primary ray hit q (find_reusable_pixel), otherwise recomputed with settings.recompute_rays() shadow rays, drawn
+/// from `recompute_sampler` (bounce b's shadow rays are its samples b x recompute_rays onwards). Emission at q is
+/// not added: it is already L1 at p.
 IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& camera, const ScreenBuffer& screen,
-                                       const SurfacePoint& sp, const RenderSettings& settings, Pcg32& bounce_rng,
-                                       Pcg32& recompute_rng, uint64_t& rays_traced);
+                                       const SurfacePoint& sp, const RenderSettings& settings,
+                                       PixelSampler& bounce_sampler, PixelSampler& recompute_sampler,
+                                       uint64_t first_sample, uint64_t& rays_traced);
 
-/// Ambient occlusion: Kd times the fraction of settings.ao_rays cosine rays that travel farther than `radius`,
-/// the light of a uniform white sky that nearby geometry blocks.
-Vec3 estimate_ambient_occlusion(const TracedScene& traced, const SurfacePoint& sp, int rays, float radius, Pcg32& rng,
-                                uint64_t& rays_traced);
+/// Ambient occlusion: Kd times the fraction of `rays` cosine rays (samples `first_sample` onwards) that travel
+/// farther than `radius`, the light of a uniform white sky that nearby geometry blocks.
+Vec3 estimate_ambient_occlusion(const TracedScene& traced, const SurfacePoint& sp, int rays, float radius,
+                                PixelSampler& sampler, uint64_t first_sample, uint64_t& rays_traced);
 
 /// The AO radius in world units for these settings (a tenth of the scene diagonal by default).
 float ambient_occlusion_radius(const TracedScene& traced, const RenderSettings& settings);

@@ -82,6 +82,12 @@ void ProgressiveTracer::set_frame_limit(uint64_t frames) {
   wake_.notify_all();
 }
 
+void ProgressiveTracer::set_time_limit(double seconds) {
+  std::lock_guard lock(mutex_);
+  time_limit_ = seconds;
+  wake_.notify_all();
+}
+
 void ProgressiveTracer::set_previews(bool enabled) {
   std::lock_guard lock(mutex_);
   previews_ = enabled;
@@ -120,7 +126,7 @@ bool ProgressiveTracer::idle() const {
 
 bool ProgressiveTracer::can_work_locked() const {
   return !paused_ && scene_ && settings_.width > 0 && settings_.height > 0 &&
-         (frame_limit_ == 0 || stats_.frames < frame_limit_);
+         (frame_limit_ == 0 || stats_.frames < frame_limit_) && (time_limit_ <= 0.0 || stats_.seconds < time_limit_);
 }
 
 void ProgressiveTracer::publish(const Film& film, uint64_t generation, int divisor, const TracerStats& stats) {

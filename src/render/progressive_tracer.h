@@ -57,6 +57,9 @@ class ProgressiveTracer {
   // These do not restart.
   void set_paused(bool paused);
   void set_frame_limit(uint64_t frames);  ///< 0: no limit
+  /// Stops accumulating once this many seconds were spent tracing since the last restart (the frame in flight
+  /// finishes); 0: no limit.
+  void set_time_limit(double seconds);
   /// Reduced-resolution previews after a restart (on by default); off makes every published frame full size.
   void set_previews(bool enabled);
 
@@ -91,6 +94,7 @@ class ProgressiveTracer {
   RenderSettings settings_;
   bool paused_ = false, previews_ = true, stopping_ = false, dirty_ = true;
   uint64_t frame_limit_ = 0;
+  double time_limit_ = 0.0;
   uint64_t generation_ = 0;
   TracerStats stats_;
   TracerSnapshot ready_;  ///< the newest published snapshot, swapped out by take_snapshot

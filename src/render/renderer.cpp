@@ -4,18 +4,18 @@
 // and every pixel's sums see the same sequence of additions whatever the thread count.
 #include "render/renderer.h"
 
-#include "render/direct_light.h"
-#include "render/indirect_light.h"
-
 #include <chrono>
 #include <cmath>
+
+#include "render/direct_light.h"
+#include "render/indirect_light.h"
 
 namespace lueur {
 namespace {
 
 struct FrameBuffers {
   std::array<std::vector<Vec3>, kLayerCount> values;  ///< this frame's value per needed layer and pixel
-  std::vector<SurfacePoint> hits;                       ///< primary hit per pixel (triangle kNoHit: none)
+  std::vector<SurfacePoint> hits;                     ///< primary hit per pixel (triangle kNoHit: none)
   ScreenBuffer screen;
 };
 
@@ -33,9 +33,10 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
                    int x, int y, uint64_t frame, FrameBuffers& out, uint64_t& rays) {
   const size_t i = pixel_index(x, y, camera.width);
   const uint64_t pixel = i;
-  Pcg32 camera_rng = make_pixel_rng(settings.seed, pixel, frame, RngPurpose::kCamera);
-  const float jx = camera_rng.next_float(), jy = camera_rng.next_float();
-  const Ray ray = camera_ray(camera, static_cast<float>(x) + jx, static_cast<float>(y) + jy);
+  PixelSampler camera_sampler(settings.sampler, settings.seed, pixel, frame, RngPurpose::kCamera);
+  camera_sampler.start_sample(frame);
+  const Vec2 jitter = camera_sampler.get_2d();
+  const Ray ray = camera_ray(camera, static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y);
   ++rays;
   const Hit hit = intersect_closest(traced.accel, ray);
   if (!hit.found()) return;
@@ -50,13 +51,14 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
   const bool l2 = settings.pass_enabled(Pass::kL2);
   const bool screen_needs_l1 = l2 && settings.reuse != ReuseMode::kOff;
   if (settings.pass_enabled(Pass::kL1) || screen_needs_l1) {
-    Pcg32 rng = make_pixel_rng(settings.seed, pixel, frame, RngPurpose::kDirect);
+    PixelSampler sampler(settings.sampler, settings.seed, pixel, frame, RngPurpose::kDirect);
     DirectLightOptions options;
     options.strategy = settings.lights;
     options.rays = settings.l1_rays;
     options.blinn_k = settings.blinn_k;
     Vec3 diffuse(0.0f);
-    const Vec3 l1 = estimate_direct_light(traced, sp, options, rng, rays, &diffuse);
+    const Vec3 l1 = estimate_direct_light(traced, sp, options, sampler, frame * static_cast<uint64_t>(options.rays),
+                                          rays, &diffuse);
     set_layer(out, Layer::kL1, i, l1);
     set_layer(out, Layer::kL1Diffuse, i, diffuse);
     const Vec3 screen_l1 = settings.reuse_diffuse_only ? diffuse : l1;
@@ -69,10 +71,10 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
     }
   }
   if (settings.pass_enabled(Pass::kAo)) {
-    Pcg32 rng = make_pixel_rng(settings.seed, pixel, frame, RngPurpose::kOcclusion);
+    PixelSampler sampler(settings.sampler, settings.seed, pixel, frame, RngPurpose::kOcclusion);
     set_layer(out, Layer::kAo, i,
-              estimate_ambient_occlusion(traced, sp, settings.ao_rays, ambient_occlusion_radius(traced, settings), rng,
-                                         rays));
+              estimate_ambient_occlusion(traced, sp, settings.ao_rays, ambient_occlusion_radius(traced, settings),
+                                         sampler, frame * static_cast<uint64_t>(settings.ao_rays), rays));
   }
 }
 
@@ -82,10 +84,11 @@ void trace_indirect(const TracedScene& traced, const Camera& camera, const Rende
   const size_t i = pixel_index(x, y, camera.width);
   const SurfacePoint& sp = out.hits[i];
   if (sp.triangle == kNoHit) return;
-  Pcg32 bounce_rng = make_pixel_rng(settings.seed, i, frame, RngPurpose::kIndirect);
-  Pcg32 recompute_rng = make_pixel_rng(settings.seed, i, frame, RngPurpose::kRecompute);
+  PixelSampler bounce_sampler(settings.sampler, settings.seed, i, frame, RngPurpose::kIndirect);
+  PixelSampler recompute_sampler(settings.sampler, settings.seed, i, frame, RngPurpose::kRecompute);
   const IndirectResult r =
-      estimate_indirect_light(traced, camera, out.screen, sp, settings, bounce_rng, recompute_rng, rays);
+      estimate_indirect_light(traced, camera, out.screen, sp, settings, bounce_sampler, recompute_sampler,
+                              frame * static_cast<uint64_t>(settings.l2_rays), rays);
   set_layer(out, Layer::kL2, i, r.l2);
   set_layer(out, Layer::kL2Reused, i, r.from_reused);
   set_layer(out, Layer::kL2Recomputed, i, r.from_recomputed);

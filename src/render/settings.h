@@ -2,8 +2,6 @@
 // serve both the command line and the UI. Depends on core only.
 #pragma once
 
-#include "core/math.h"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -11,6 +9,9 @@
 #include <optional>
 #include <string>
 #include <string_view>
+
+#include "core/math.h"
+#include "core/pixel_sampler.h"
 
 namespace lueur {
 
@@ -54,15 +55,16 @@ struct RenderSettings {
   int height = 512;
   std::array<bool, kPassCount> enabled = {true, true, true, false};
   LightStrategy lights = LightStrategy::kArea;
-  int l1_rays = 16;        ///< shadow rays per pixel per frame
-  float blinn_k = 0.7f;    ///< the report's Lambert share for materials without Ks
-  int l2_rays = 16;        ///< cosine-weighted bounce rays per pixel per frame
+  int l1_rays = 16;      ///< shadow rays per pixel per frame
+  float blinn_k = 0.7f;  ///< the report's Lambert share for materials without Ks
+  int l2_rays = 16;      ///< cosine-weighted bounce rays per pixel per frame
   ReuseMode reuse = ReuseMode::kFrame;
   float recompute_ratio = 0.125f;   ///< L1(q) is recomputed with this share of l1_rays (at least one ray)
   bool reuse_diffuse_only = false;  ///< reuse only the view-independent part of L1; recompute the rest
   int ao_rays = 16;
   float ao_radius = 0.0f;  ///< world units; 0 or less: a tenth of the scene's bounding-box diagonal
   uint64_t seed = 0;
+  SamplerKind sampler = SamplerKind::kSobol;  ///< where the estimators' random numbers come from
 
   bool operator==(const RenderSettings&) const = default;
   bool pass_enabled(Pass p) const { return enabled[static_cast<size_t>(p)]; }

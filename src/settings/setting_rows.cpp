@@ -66,6 +66,11 @@ std::vector<Row> make_rows() {
       [](auto& s) -> auto& { return s.smooth_normals; }, false));
   table.push_back(
       integer_row("seed", "random seed", E::kRestart, [](auto& s) -> auto& { return s.render.seed; }, {0, u64_max}));
+  table.push_back(enum_row<SamplerKind>(
+      "sampler",
+      "where the estimators' random numbers come from: independent streams, or "
+      "Owen-scrambled Sobol points, one progressive sequence per pixel",
+      E::kRestart, kSamplerKindNames, [](auto& s) -> auto& { return s.render.sampler; }));
   table.push_back(real_row(
       "exposure", "exposure in stops", E::kDisplay, [](auto& s) -> auto& { return s.display.exposure; }, {-30, 30},
       SettingRange{-10, 10}));
@@ -77,6 +82,12 @@ std::vector<Row> make_rows() {
                                 [](auto& s) -> auto& { return s.frame_limit; }, {0, u64_max});
   frame_limit.always_described = false;
   table.push_back(frame_limit);
+  Row time_limit = real_row("time-limit",
+                            "stop after this many seconds of tracing, once the frame in flight is done (0: never); the "
+                            "image then depends on the machine's speed",
+                            E::kNone, [](auto& s) -> auto& { return s.time_limit; }, {0, 1e9});
+  time_limit.always_described = false;
+  table.push_back(time_limit);
 
   for (Row& row : table) {
     if (!row.same)

@@ -26,6 +26,7 @@ struct Settings {
   AccelKind accel = AccelKind::kLueur;  ///< which acceleration structure traces the rays
   int frames = 64;                      ///< frames a headless render accumulates (a saved view: those shown)
   uint64_t frame_limit = 0;             ///< the window stops accumulating after this many frames; 0: never
+  float time_limit = 0.0f;  ///< seconds of tracing after which a render stops (frame in flight included); 0: never
   bool operator==(const Settings&) const = default;
 };
 

@@ -116,6 +116,8 @@ void ao_radius_widgets(PanelModel& m) {
 void sampling_section(PanelModel& m) {
   Settings& v = m.settings;
   RenderSettings& r = v.render;
+  enum_combo("Sampler", kSamplerKindNames, r.sampler);
+  setting_tooltip("sampler");
   enum_combo("Light sampling", kLightStrategyNames, r.lights);
   setting_tooltip("lights");
   setting_slider("L1 shadow rays", "l1-rays", r.l1_rays);
@@ -182,6 +184,11 @@ void control_section(PanelModel& m, PanelActions& actions) {
   ImGui::SetNextItemWidth(100.0f);
   if (ImGui::InputInt("Frame limit", &limit, 0, 0)) m.settings.frame_limit = static_cast<uint64_t>(std::max(0, limit));
   setting_tooltip("frame-limit");
+  ImGui::SetNextItemWidth(100.0f);
+  ImGui::InputFloat("Time limit (s)", &m.settings.time_limit, 0.0f, 0.0f, "%.1f");
+  setting_tooltip("time-limit");
+  if (!(m.settings.time_limit >= 0.0f)) m.settings.time_limit = 0.0f;  // negative or NaN: no limit
+  m.settings.time_limit = std::min(m.settings.time_limit, static_cast<float>(setting_info("time-limit").range->max));
   if (ImGui::Button("Frame scene (F)")) actions.frame_scene = true;
   ImGui::SameLine();
   if (ImGui::Button("Reset view (R)")) actions.reset_camera = true;
