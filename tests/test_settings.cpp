@@ -119,11 +119,15 @@ TEST(SettingTable, CommandLineAndViewFilesAcceptTheSameRanges) {
   for (const SettingInfo& info : setting_infos()) {
     if (!info.range || (info.value_name != "N" && info.value_name != "X")) continue;  // size and weights below
     const bool integer = info.value_name == "N";
-    const auto text = [&](double v) {
+    const auto text = [&](double v) -> std::string {
+      if (integer && v >= 9e18) return "18446744073709551615";  // the largest uint64, beyond a long long
       std::ostringstream out;
       out.precision(17);
-      out << (integer ? static_cast<double>(static_cast<long long>(v)) : v);
-      return integer && v >= 9e18 ? std::string("18446744073709551615") : out.str();
+      if (integer)
+        out << static_cast<long long>(v);
+      else
+        out << v;
+      return out.str();
     };
     bool agrees = false;
     EXPECT_TRUE(accepted(info, text(info.range->max), agrees)) << info.name << " at its maximum";
