@@ -109,20 +109,6 @@ INSTANTIATE_TEST_SUITE_P(Lights, ClosedBox,
                                            LightStrategy::kPower),
                          test::strategy_test_name);
 
-/// Irradiance at p (normal n) from a polygon of uniform radiance le (Lambert 1760):
-/// E = le / 2 sum_i beta_i (n . gamma_i), beta_i the angle subtended by edge i, gamma_i the unit normal of the
-/// plane through p and that edge.
-double lambert_polygon_irradiance(const std::vector<glm::dvec3>& polygon, const glm::dvec3& p, const glm::dvec3& n,
-                                  double le) {
-  double sum = 0.0;
-  for (size_t i = 0; i < polygon.size(); ++i) {
-    const glm::dvec3 a = glm::normalize(polygon[i] - p), b = glm::normalize(polygon[(i + 1) % polygon.size()] - p);
-    const double beta = std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0));
-    sum += beta * glm::dot(n, glm::normalize(glm::cross(a, b)));
-  }
-  return 0.5 * le * std::fabs(sum);
-}
-
 TEST(DirectLight, MatchesLambertPolygonFormulaUnderARectangularLight) {
   const float w = 1.0f, h = 0.6f, height = 1.0f, rho = 0.8f, le = 5.0f;
   const auto traced = prepare_scene(test::make_rect_light_over_floor(w, h, height, Vec3(rho), Vec3(le)));
@@ -143,7 +129,7 @@ TEST(DirectLight, MatchesLambertPolygonFormulaUnderARectangularLight) {
       options.strategy = strategy;
       options.blinn_k = 1.0f;
       const Estimate e = estimate_with_error(*traced, sp, options, 20000, 99);
-      const double irradiance = lambert_polygon_irradiance(light, glm::dvec3(p), glm::dvec3(0, 1, 0), le);
+      const double irradiance = test::lambert_irradiance(light, glm::dvec3(p), glm::dvec3(0, 1, 0), le);
       expect_within_error(e, Vec3(static_cast<float>(rho / kPi * irradiance)),
                           "point " + std::to_string(p.x) + "," + std::to_string(p.z));
       EXPECT_GT(e.mean.r, 0.0f);
