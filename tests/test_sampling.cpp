@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <random>
 
 namespace lueur {
 namespace {
@@ -172,6 +173,34 @@ TEST(LightTable, AlgorithmOnePicksExactlyWhatTheTablePicks) {
   }
   EXPECT_EQ(choose_light_linear_scan(table, 0.0f), 0u);
   EXPECT_EQ(choose_light(table, LightStrategy::kArea, std::nextafter(1.0f, 0.0f)).index, table.size() - 1);
+}
+
+// The table search against Algorithm 1's linear scan on tables of every size up to 40, with runs of equal
+// cumulative values (zero-area emitters) and u at and around every step.
+TEST(LightTable, TheSearchAgreesWithTheLinearScanOnEveryTableSize) {
+  std::mt19937 random(3);
+  for (size_t n = 1; n <= 40; ++n) {
+    LightTable table;
+    double sum = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+      const double area = random() % 4 == 0 && i > 0 ? 0.0 : 0.5 + static_cast<double>(random() % 100);
+      sum += area;
+      table.triangles.push_back(static_cast<uint32_t>(i));
+      table.areas.push_back(static_cast<float>(area));
+      table.cdf_area.push_back(sum);
+    }
+    table.cdf_power = table.cdf_area;
+    std::vector<float> us = {0.0f, std::nextafter(1.0f, 0.0f)};
+    for (const double c : table.cdf_area) {
+      const float u = static_cast<float>(c / sum);
+      for (const float v : {u, std::nextafter(u, 0.0f), std::nextafter(u, 1.0f)})
+        if (v >= 0.0f && v < 1.0f) us.push_back(v);
+    }
+    for (int i = 0; i < 2000; ++i) us.push_back(std::uniform_real_distribution<float>(0.0f, 1.0f)(random));
+    for (const float u : us)
+      ASSERT_EQ(choose_light(table, LightStrategy::kArea, u).index, choose_light_linear_scan(table, u))
+          << n << " emitters, u = " << u;
+  }
 }
 
 }  // namespace

@@ -7,11 +7,21 @@
 namespace lueur {
 namespace {
 
-/// First index whose cumulative value exceeds u x total: the inverse of the discrete CDF.
+/// First index whose cumulative value exceeds u x total: the inverse of the discrete CDF (std::upper_bound's
+/// answer). Branch-free: the halving picks its side with a conditional move, since with stratified numbers every
+/// comparison is a coin toss that a branch predictor would lose half the time.
 uint32_t search_cdf(const std::vector<double>& cdf, float u) {
   const double x = static_cast<double>(u) * cdf.back();
-  const auto it = std::upper_bound(cdf.begin(), cdf.end(), x);
-  return static_cast<uint32_t>(std::min<size_t>(static_cast<size_t>(it - cdf.begin()), cdf.size() - 1));
+  const double* base = cdf.data();
+  size_t length = cdf.size();
+  // The answer stays within [base, base + length]; each step keeps the half that can hold it.
+  while (length > 1) {
+    const size_t half = length / 2;
+    base = base[half - 1] <= x ? base + half : base;
+    length -= half;
+  }
+  const size_t index = static_cast<size_t>(base - cdf.data()) + (*base <= x ? 1 : 0);
+  return static_cast<uint32_t>(std::min(index, cdf.size() - 1));
 }
 
 float cdf_pmf(const std::vector<double>& cdf, uint32_t index) {
