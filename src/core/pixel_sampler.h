@@ -22,10 +22,13 @@ inline constexpr std::array<std::string_view, 2> kSamplerKindNames = {"independe
 
 class PixelSampler {
  public:
+  /// Each kind makes only its own state: samplers are made several times per pixel and frame.
   PixelSampler(SamplerKind kind, uint64_t seed, uint64_t pixel, uint64_t frame, RngPurpose purpose)
       : kind_(kind),
-        rng_(make_pixel_rng(seed, pixel, frame, purpose)),
-        key_(hash_combine(hash_combine(hash_combine(seed, pixel), static_cast<uint64_t>(purpose)), 0x50b01ull)) {}
+        rng_(kind == SamplerKind::kIndependent ? make_pixel_rng(seed, pixel, frame, purpose) : Pcg32(0, 0)),
+        key_(kind == SamplerKind::kSobol
+                 ? hash_combine(hash_combine(hash_combine(seed, pixel), static_cast<uint64_t>(purpose)), 0x50b01ull)
+                 : 0) {}
 
   /// Begins sample `index` of this pixel's sequence for this purpose; its dimensions are counted from 0. (The
   /// independent sampler only draws the next numbers of its stream.)
