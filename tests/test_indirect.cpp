@@ -177,7 +177,7 @@ TEST(ReuseModes, ReuseHappensWhereTheCameraSeesQAndNeverBehindTheBlocks) {
       if (!hit.found()) continue;
       const size_t i = static_cast<size_t>(y * w + x);
       screen.triangle[i] = hit.triangle;
-      screen.position[i] = traced->scene.point(hit.triangle, hit.u, hit.v);
+      screen.pixels[i].position = traced->scene.point(hit.triangle, hit.u, hit.v);
     }
   // Random points, uniform by area over the scene: those the camera sees directly are reused almost always (misses
   // only where a pixel straddles two triangles); those it cannot see (behind the blocks, their back faces) are

@@ -13,19 +13,17 @@ namespace {
 /// direction to the point.
 Vec3 sample_emitter(const TracedScene& traced, const SurfacePoint& sp, uint32_t table_index, float u1, float u2,
                     Vec3& wi, uint64_t& rays_traced) {
-  const Scene& scene = traced.scene;
-  const uint32_t tri = traced.lights.triangles[table_index];
+  const EmitterRecord& light = traced.lights.records[table_index];
   const Vec2 b = sample_uniform_triangle(u1, u2);
-  const Vec3 light_point = scene.point(tri, b.x, b.y);
-  const Vec3 light_normal_raw = scene.geometric_normal_raw(tri);
+  const Vec3 light_point = (1.0f - b.x - b.y) * light.p0 + b.x * light.p1 + b.y * light.p2;
 
   const Vec3 to_light = light_point - sp.position;
   const float distance2 = glm::dot(to_light, to_light);
   if (!(distance2 > 0.0f)) return Vec3(0.0f);
-  wi = to_light / std::sqrt(distance2);
+  wi = to_light * (1.0f / std::sqrt(distance2));
 
   // Emitters shine on the side of their geometric normal only.
-  const float cos_light = -glm::dot(light_normal_raw, wi) / glm::length(light_normal_raw);
+  const float cos_light = -glm::dot(light.normal, wi);
   if (!(cos_light > 0.0f)) return Vec3(0.0f);
   // Light must arrive on the side the surface is seen from, by both normals (no leaks through the surface).
   const float cos_surface = glm::dot(sp.shading_normal, wi);
@@ -38,9 +36,7 @@ Vec3 sample_emitter(const TracedScene& traced, const SurfacePoint& sp, uint32_t 
   shadow.tmax = 1.0f - 1e-4f;  // stop just short of the light itself
   ++rays_traced;
   if (intersect_any(traced.accel, shadow)) return Vec3(0.0f);
-
-  const float area = traced.lights.areas[table_index];
-  return scene.material_of(tri).ke * (cos_surface * cos_light * area / distance2);
+  return light.ke * (cos_surface * cos_light * light.area / distance2);
 }
 
 }  // namespace

@@ -21,25 +21,29 @@ int find_reusable_pixel(const Camera& camera, const ScreenBuffer& screen, uint32
   const int px = std::min(static_cast<int>(x), screen.width - 1), py = std::min(static_cast<int>(y), screen.height - 1);
   const size_t i = static_cast<size_t>(py) * static_cast<size_t>(screen.width) + static_cast<size_t>(px);
   if (screen.triangle[i] != triangle) return -1;
-  // The pixel's footprint at q's depth, stretched by the obliquity of q's plane to the view ray.
+  const ScreenPixel& seen = screen.pixels[i];
+  // The pixel's footprint at q's depth, stretched by the obliquity of q's plane to the view ray:
+  //   |seen - q| <= k footprint / obliquity, obliquity = max(|cos|, 0.05), cos = (to_q . n) / |to_q|,
+  // squared and multiplied through by |to_q|^2, so that no square root or division is needed.
   const Vec3 to_q = q - camera.eye;
-  const float distance = glm::length(to_q);
+  const float distance2 = glm::dot(to_q, to_q);
   const float depth = glm::dot(to_q, camera.forward);
-  const float footprint = 2.0f * camera.tan_half_fovy * depth / static_cast<float>(camera.height);
-  const float obliquity = std::max(std::fabs(glm::dot(to_q, q_normal)) / distance, 0.05f);
-  const float tolerance = kReuseFootprints * footprint / obliquity;
-  if (glm::length(screen.position[i] - q) > tolerance) return -1;
+  const float tolerance = kReuseFootprints * 2.0f * camera.tan_half_fovy * depth / static_cast<float>(camera.height);
+  const float along = glm::dot(to_q, q_normal);
+  const float obliquity2_distance2 = std::max(along * along, 0.05f * 0.05f * distance2);
+  const Vec3 gap = seen.position - q;
+  if (glm::dot(gap, gap) * obliquity2_distance2 > tolerance * tolerance * distance2) return -1;
   return static_cast<int>(i);
 }
 
 namespace {
 
-/// A direction on the cosine-weighted hemisphere around the shading normal, or false when it dips below the
+/// A direction on the cosine-weighted hemisphere around the shading normal (`shading_frame`'s z), or false when it dips below the
 /// geometric surface (such rays would leak through it and count as zero).
-bool sample_bounce_ray(const SurfacePoint& sp, PixelSampler& sampler, Ray& ray) {
+bool sample_bounce_ray(const SurfacePoint& sp, const Frame& shading_frame, PixelSampler& sampler, Ray& ray) {
   const Vec2 u = sampler.get_2d();
   const Vec3 local = sample_cosine_hemisphere(u.x, u.y);
-  const Vec3 wi = Frame::from_normal(sp.shading_normal).to_world(local);
+  const Vec3 wi = shading_frame.to_world(local);
   if (!(local.z > 0.0f && glm::dot(wi, sp.geometric_normal) > 0.0f)) return false;
   ray.origin = offset_origin(sp.position, sp.geometric_normal, wi);
   ray.dir = wi;
@@ -53,8 +57,7 @@ void ScreenBuffer::resize(int w, int h) {
   height = h;
   const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
   triangle.assign(n, kNoHit);
-  position.assign(n, Vec3(0.0f));
-  l1.assign(n, Vec3(0.0f));
+  pixels.assign(n, ScreenPixel{});
   l1_average.clear();
 }
 
@@ -72,41 +75,46 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
   recompute.rays = settings.recompute_rays();
   recompute.blinn_k = settings.blinn_k;
 
+  const Frame shading_frame = Frame::from_normal(sp.shading_normal);
   for (int s = 0; s < settings.l2_rays; ++s) {
     const uint64_t bounce_sample = first_sample + static_cast<uint64_t>(s);
     const uint64_t first_shadow_sample = bounce_sample * static_cast<uint64_t>(recompute.rays);
     bounce_sampler.start_sample(bounce_sample);
     Ray bounce;
-    if (!sample_bounce_ray(sp, bounce_sampler, bounce)) continue;
+    if (!sample_bounce_ray(sp, shading_frame, bounce_sampler, bounce)) continue;
     const Vec3& wi = bounce.dir;
     ++rays_traced;
     const Hit hit = intersect_closest(traced.accel, bounce);
     if (!hit.found()) continue;
     ++result.bounce_hits;
-    const SurfacePoint q = make_surface_point(scene, bounce, hit);
+    // The reuse test needs only q's position and plane; the full surface point only where L1(q) is traced.
+    const Vec3 q_position = scene.point(hit.triangle, hit.u, hit.v);
 
     // L1(q) toward p: from the screen where the camera saw q, otherwise traced anew.
     Vec3 l1_q(0.0f);
     bool reused = false;
     if (settings.reuse != ReuseMode::kOff) {
-      const int pixel = find_reusable_pixel(camera, screen, hit.triangle, q.position, q.geometric_normal);
+      const Vec3 q_normal = glm::normalize(scene.geometric_normal_raw(hit.triangle));
+      const int pixel = find_reusable_pixel(camera, screen, hit.triangle, q_position, q_normal);
       if (pixel >= 0) {
         reused = true;
         const size_t i = static_cast<size_t>(pixel);
-        l1_q = settings.reuse == ReuseMode::kAverage ? screen.l1_average[i] : screen.l1[i];
+        l1_q = settings.reuse == ReuseMode::kAverage ? screen.l1_average[i] : screen.pixels[i].l1;
         if (settings.reuse_diffuse_only) {
           // The screen holds only the view-independent part; the view-dependent rest is traced toward p.
           const Material& mq = scene.material_of(hit.triangle);
           if (mq.has_specular() || settings.blinn_k < 1.0f) {
             DirectLightOptions rest = recompute;
             rest.specular_only = true;
-            l1_q += estimate_direct_light(traced, q, rest, recompute_sampler, first_shadow_sample, rays_traced);
+            l1_q += estimate_direct_light(traced, make_surface_point(scene, bounce, hit), rest, recompute_sampler,
+                                          first_shadow_sample, rays_traced);
           }
         }
       }
     }
     if (!reused)
-      l1_q = estimate_direct_light(traced, q, recompute, recompute_sampler, first_shadow_sample, rays_traced);
+      l1_q = estimate_direct_light(traced, make_surface_point(scene, bounce, hit), recompute, recompute_sampler,
+                                   first_shadow_sample, rays_traced);
 
     // f cos / pdf with pdf = cos / pi.
     const Vec3 contribution = eval_brdf(material, sp.shading_normal, wi, sp.wo, settings.blinn_k) * kPi * l1_q;
@@ -128,10 +136,11 @@ Vec3 estimate_ambient_occlusion(const TracedScene& traced, const SurfacePoint& s
                                 PixelSampler& sampler, uint64_t first_sample, uint64_t& rays_traced) {
   if (rays <= 0) return Vec3(0.0f);
   int open = 0;
+  const Frame shading_frame = Frame::from_normal(sp.shading_normal);
   for (int s = 0; s < rays; ++s) {
     sampler.start_sample(first_sample + static_cast<uint64_t>(s));
     Ray ray;
-    if (!sample_bounce_ray(sp, sampler, ray)) continue;
+    if (!sample_bounce_ray(sp, shading_frame, sampler, ray)) continue;
     ray.tmax = radius;
     ++rays_traced;
     if (!intersect_any(traced.accel, ray)) ++open;

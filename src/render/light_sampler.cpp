@@ -1,4 +1,4 @@
-// Light-sampling tables: uniform, by area (the report's Algorithm 1 made O(log n)), by power.
+// Light-sampling tables: uniform, by area (the report's Algorithm 1 made O(1) with a guide table), by power.
 #include "render/light_sampler.h"
 
 #include <algorithm>
@@ -7,29 +7,46 @@
 namespace lueur {
 namespace {
 
-/// First index whose cumulative value exceeds u x total: the inverse of the discrete CDF (std::upper_bound's
-/// answer). Branch-free: the halving picks its side with a conditional move, since with stratified numbers every
-/// comparison is a coin toss that a branch predictor would lose half the time.
-uint32_t search_cdf(const std::vector<double>& cdf, float u) {
-  const double x = static_cast<double>(u) * cdf.back();
-  const double* base = cdf.data();
-  size_t length = cdf.size();
-  // The answer stays within [base, base + length]; each step keeps the half that can hold it.
-  while (length > 1) {
-    const size_t half = length / 2;
-    base = base[half - 1] <= x ? base + half : base;
-    length -= half;
-  }
-  const size_t index = static_cast<size_t>(base - cdf.data()) + (*base <= x ? 1 : 0);
-  return static_cast<uint32_t>(std::min(index, cdf.size() - 1));
+/// The first index whose running sum exceeds x, starting from `first`, which must not be past it.
+uint32_t walk_cdf(const std::vector<double>& cdf, uint32_t first, double x) {
+  const auto last = static_cast<uint32_t>(cdf.size() - 1);
+  uint32_t i = first;
+  while (i < last && cdf[i] <= x) ++i;
+  return i;
 }
 
-float cdf_pmf(const std::vector<double>& cdf, uint32_t index) {
-  const double previous = index == 0 ? 0.0 : cdf[index - 1];
-  return static_cast<float>((cdf[index] - previous) / cdf.back());
+/// Guide buckets: a power of two at least twice the entries, so that most buckets hold at most one step.
+size_t guide_size(size_t entries) {
+  size_t size = 1;
+  while (size < 2 * entries) size *= 2;
+  return size;
+}
+
+uint32_t invert_cdf(const LightCdf& table, float u) {
+  const auto buckets = static_cast<uint32_t>(table.guide.size());
+  // u x buckets is exact (a power of two), so u is at least this bucket's smallest u, and so is x.
+  const uint32_t bucket = std::min(static_cast<uint32_t>(u * static_cast<float>(buckets)), buckets - 1);
+  return walk_cdf(table.cdf, table.guide[bucket], static_cast<double>(u) * table.cdf.back());
 }
 
 }  // namespace
+
+void index_light_cdf(LightCdf& table) {
+  const size_t n = table.cdf.size();
+  const double total = table.cdf.back();
+  table.pmf.resize(n);
+  for (size_t i = 0; i < n; ++i)
+    table.pmf[i] = static_cast<float>((table.cdf[i] - (i == 0 ? 0.0 : table.cdf[i - 1])) / total);
+  table.guide.resize(guide_size(n));
+  const auto buckets = static_cast<float>(table.guide.size());
+  uint32_t answer = 0;
+  for (size_t j = 0; j < table.guide.size(); ++j) {
+    // The smallest u of bucket j, and the x it gives: every u of the bucket gives at least that x.
+    const float u = static_cast<float>(j) / buckets;
+    answer = walk_cdf(table.cdf, answer, static_cast<double>(u) * total);
+    table.guide[j] = answer;
+  }
+}
 
 LightTable build_light_table(const Scene& scene) {
   LightTable table;
@@ -42,15 +59,27 @@ LightTable build_light_table(const Scene& scene) {
   double area_sum = 0.0, power_sum = 0.0;
   for (const uint32_t i : order) {
     const uint32_t tri = scene.emitters[i];
+    const Triangle& t = scene.triangles[tri];
     table.triangles.push_back(tri);
     table.areas.push_back(areas[i]);
+    EmitterRecord record;
+    record.p0 = scene.positions[t.v[0]];
+    record.p1 = scene.positions[t.v[1]];
+    record.p2 = scene.positions[t.v[2]];
+    record.normal = glm::normalize(scene.geometric_normal_raw(tri));  // emitters have a positive area
+    record.ke = scene.material_of(tri).ke;
+    record.area = areas[i];
+    table.records.push_back(record);
     area_sum += areas[i];
-    power_sum += static_cast<double>(areas[i]) * luminance(scene.material_of(tri).ke);
-    table.cdf_area.push_back(area_sum);
-    table.cdf_power.push_back(power_sum);
+    power_sum += static_cast<double>(areas[i]) * luminance(record.ke);
+    table.by_area.cdf.push_back(area_sum);
+    table.by_power.cdf.push_back(power_sum);
   }
+  if (table.empty()) return table;
   // An emitter whose luminance is zero everywhere would make the power table empty: fall back to area.
-  if (!table.empty() && !(power_sum > 0.0)) table.cdf_power = table.cdf_area;
+  if (!(power_sum > 0.0)) table.by_power.cdf = table.by_area.cdf;
+  index_light_cdf(table.by_area);
+  index_light_cdf(table.by_power);
   return table;
 }
 
@@ -64,12 +93,12 @@ LightChoice choose_light(const LightTable& table, LightStrategy strategy, float 
       choice.pmf = 1.0f / static_cast<float>(n);
       break;
     case LightStrategy::kArea:
-      choice.index = search_cdf(table.cdf_area, u);
-      choice.pmf = cdf_pmf(table.cdf_area, choice.index);
+      choice.index = invert_cdf(table.by_area, u);
+      choice.pmf = table.by_area.pmf[choice.index];
       break;
     case LightStrategy::kPower:
-      choice.index = search_cdf(table.cdf_power, u);
-      choice.pmf = cdf_pmf(table.cdf_power, choice.index);
+      choice.index = invert_cdf(table.by_power, u);
+      choice.pmf = table.by_power.pmf[choice.index];
       break;
   }
   return choice;
@@ -77,8 +106,8 @@ LightChoice choose_light(const LightTable& table, LightStrategy strategy, float 
 
 float light_pmf(const LightTable& table, LightStrategy strategy, uint32_t index) {
   switch (strategy) {
-    case LightStrategy::kArea: return cdf_pmf(table.cdf_area, index);
-    case LightStrategy::kPower: return cdf_pmf(table.cdf_power, index);
+    case LightStrategy::kArea: return table.by_area.pmf[index];
+    case LightStrategy::kPower: return table.by_power.pmf[index];
     case LightStrategy::kUniform:
     case LightStrategy::kAll: break;
   }
@@ -87,9 +116,10 @@ float light_pmf(const LightTable& table, LightStrategy strategy, uint32_t index)
 
 uint32_t choose_light_linear_scan(const LightTable& table, float u) {
   // Algorithm 1: walk the sources, largest first, until the cumulative area passes u x total.
-  const double x = static_cast<double>(u) * table.cdf_area.back();
-  for (uint32_t i = 0; i < table.cdf_area.size(); ++i)
-    if (x < table.cdf_area[i]) return i;
+  const std::vector<double>& cdf = table.by_area.cdf;
+  const double x = static_cast<double>(u) * cdf.back();
+  for (uint32_t i = 0; i < cdf.size(); ++i)
+    if (x < cdf[i]) return i;
   return static_cast<uint32_t>(table.size() - 1);
 }
 

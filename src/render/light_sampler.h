@@ -9,31 +9,52 @@
 
 namespace lueur {
 
+/// What a shadow ray needs of one emitter, in one place: its corners, unit normal, emission and area, so that
+/// sampling a point on it reads one record instead of the scene's triangle, vertex and material arrays.
+struct EmitterRecord {
+  Vec3 p0{0.0f}, p1{0.0f}, p2{0.0f};
+  Vec3 normal{0.0f};  ///< unit geometric normal: the side it shines on
+  Vec3 ke{0.0f};
+  float area = 0.0f;
+};
+
+/// A discrete CDF with its inverse made O(1): `guide[j]` is the answer for the smallest u of bucket j (u in
+/// [j, j + 1) / guide.size(), a power of two so that u x size is exact), and a short walk finds the exact one.
+struct LightCdf {
+  std::vector<double> cdf;   ///< running sum: cdf.back() is the total
+  std::vector<float> pmf;    ///< (cdf[i] - cdf[i - 1]) / total
+  std::vector<uint32_t> guide;
+};
+
 struct LightTable {
   std::vector<uint32_t> triangles;  ///< emitter triangles, by decreasing area (ties keep scene order)
   std::vector<float> areas;
-  std::vector<double> cdf_area;     ///< running sum of areas: cdf_area.back() is the total area
-  std::vector<double> cdf_power;    ///< running sum of area x luminance(Ke)
+  std::vector<EmitterRecord> records;  ///< per table entry
+  LightCdf by_area;                    ///< running sum of areas
+  LightCdf by_power;                   ///< running sum of area x luminance(Ke)
   bool empty() const { return triangles.empty(); }
   size_t size() const { return triangles.size(); }
 };
 
 LightTable build_light_table(const Scene& scene);
 
+/// Fills `pmf` and `guide` from `cdf` (non-decreasing, positive total).
+void index_light_cdf(LightCdf& table);
+
 struct LightChoice {
   uint32_t index = 0;  ///< position in the table
   float pmf = 0.0f;    ///< probability of choosing it
 };
 
-/// One emitter for u in [0, 1): uniform, area (cumulative table and binary search) or power.
-/// `LightStrategy::kAll` does not choose; it is handled by the caller looping over every emitter.
+/// One emitter for u in [0, 1): uniform, area or power (the cumulative table's inverse: the first entry whose
+/// running sum exceeds u x total). `LightStrategy::kAll` does not choose; the caller loops over every emitter.
 LightChoice choose_light(const LightTable& table, LightStrategy strategy, float u);
 
 /// Probability that `choose_light` returns `index`.
 float light_pmf(const LightTable& table, LightStrategy strategy, uint32_t index);
 
 /// The report's Algorithm 1, kept as the reference: a linear scan over the cumulative area of the sources sorted
-/// by decreasing area. Returns exactly what the binary search of `choose_light(kArea)` returns for the same u.
+/// by decreasing area. Returns exactly what `choose_light(kArea)` returns for the same u.
 uint32_t choose_light_linear_scan(const LightTable& table, float u);
 
 }  // namespace lueur

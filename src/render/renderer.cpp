@@ -44,7 +44,7 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
   const SurfacePoint sp = make_surface_point(traced.scene, ray, hit);
   out.hits[i] = sp;
   out.screen.triangle[i] = hit.triangle;
-  out.screen.position[i] = sp.position;
+  out.screen.pixels[i].position = sp.position;
   const Material& material = traced.scene.material_of(hit.triangle);
   if (sp.front_face) set_layer(out, Layer::kLe, i, material.ke);
 
@@ -62,7 +62,7 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
     set_layer(out, Layer::kL1, i, l1);
     set_layer(out, Layer::kL1Diffuse, i, diffuse);
     const Vec3 screen_l1 = settings.reuse_diffuse_only ? diffuse : l1;
-    out.screen.l1[i] = screen_l1;
+    out.screen.pixels[i].l1 = screen_l1;
     if (screen_needs_l1 && settings.reuse == ReuseMode::kAverage) {
       // The running average including this frame: less noisy than this frame alone.
       const auto& sums = film.sums[static_cast<size_t>(settings.reuse_diffuse_only ? Layer::kL1Diffuse : Layer::kL1)];
