@@ -54,6 +54,19 @@ std::vector<Vec2> sampler_points(SamplerKind kind, uint64_t seed, uint64_t pixel
   return points;
 }
 
+// The run-time bit reversal (byte tables) against the compile-time one (shifts and masks), bit by bit.
+TEST(Sobol, BitReversalMovesBitIToBit31MinusI) {
+  static_assert(reverse_bits(1u) == 0x80000000u && reverse_bits(0x00000f01u) == 0x80f00000u);
+  for (uint32_t bit = 0; bit < 32; ++bit) ASSERT_EQ(reverse_bits(1u << bit), 1u << (31 - bit)) << bit;
+  uint32_t x = 12345u;
+  for (int i = 0; i < 100000; ++i) {
+    x = x * 1664525u + 1013904223u;
+    uint32_t expected = 0;
+    for (uint32_t bit = 0; bit < 32; ++bit) expected |= ((x >> bit) & 1u) << (31 - bit);
+    ASSERT_EQ(reverse_bits(x), expected) << x;
+  }
+}
+
 TEST(Sobol, FirstTwoDimensionsAreA02Sequence) {
   for (int k = 0; k <= 12; ++k)
     for (uint32_t block = 0; block < 3; ++block) {

@@ -6,10 +6,27 @@
 
 #include <array>
 #include <cstdint>
+#include <type_traits>
 
 namespace lueur {
 
+/// Each byte value with its bits reversed.
+inline constexpr std::array<uint8_t, 256> kReversedBytes = [] {
+  std::array<uint8_t, 256> table{};
+  for (uint32_t value = 0; value < 256; ++value)
+    for (uint32_t bit = 0; bit < 8; ++bit)
+      if (value & (1u << bit)) table[value] |= static_cast<uint8_t>(0x80u >> bit);
+  return table;
+}();
+
+/// The 32 bits of x in reverse order. At run time four lookups in a 256-byte table, which the sampler's five
+/// reversals per sample find in cache: shorter than the five dependent shift-and-mask steps.
 constexpr uint32_t reverse_bits(uint32_t x) {
+  if (!std::is_constant_evaluated()) {
+    return (static_cast<uint32_t>(kReversedBytes[x & 0xffu]) << 24) |
+           (static_cast<uint32_t>(kReversedBytes[(x >> 8) & 0xffu]) << 16) |
+           (static_cast<uint32_t>(kReversedBytes[(x >> 16) & 0xffu]) << 8) | kReversedBytes[x >> 24];
+  }
   x = (x << 16) | (x >> 16);
   x = ((x & 0x00ff00ffu) << 8) | ((x & 0xff00ff00u) >> 8);
   x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);

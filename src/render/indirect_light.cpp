@@ -1,6 +1,9 @@
 // L2 with screen-space reuse, and ambient occlusion.
 #include "render/indirect_light.h"
 
+#include <algorithm>
+#include <array>
+
 #include "core/sampling.h"
 #include "render/brdf.h"
 #include "render/direct_light.h"
@@ -12,16 +15,31 @@ namespace {
 /// in the same pixel, so their distance is at most the pixel's diagonal (sqrt 2) in that measure.
 constexpr float kReuseFootprints = 1.5f;
 
+/// A bounce ray that hit q, waiting for its L1(q).
+struct PendingBounce {
+  Ray ray;
+  Hit hit;
+  Vec3 q_position{0.0f};
+  uint64_t sample = 0;
+  int pixel = -1;  ///< the screen pixel q projects to, or -1 (or no reuse)
+};
+
+/// Bounce rays traced ahead of their L1(q) lookups.
+constexpr int kBounceBatch = 16;
+
 }  // namespace
 
-int find_reusable_pixel(const Camera& camera, const ScreenBuffer& screen, uint32_t triangle, const Vec3& q,
-                        const Vec3& q_normal) {
+int screen_pixel_of(const Camera& camera, const ScreenBuffer& screen, const Vec3& q) {
   float x = 0.0f, y = 0.0f;
   if (!project_to_pixel(camera, q, x, y)) return -1;
   const int px = std::min(static_cast<int>(x), screen.width - 1), py = std::min(static_cast<int>(y), screen.height - 1);
-  const size_t i = static_cast<size_t>(py) * static_cast<size_t>(screen.width) + static_cast<size_t>(px);
-  if (screen.triangle[i] != triangle) return -1;
-  const ScreenPixel& seen = screen.pixels[i];
+  return py * screen.width + px;
+}
+
+bool pixel_saw_q(const Camera& camera, const ScreenBuffer& screen, int pixel, uint32_t triangle, const Vec3& q,
+                 const Vec3& q_normal) {
+  const auto i = static_cast<size_t>(pixel);
+  if (screen.triangle[i] != triangle) return false;
   // The pixel's footprint at q's depth, stretched by the obliquity of q's plane to the view ray:
   //   |seen - q| <= k footprint / obliquity, obliquity = max(|cos|, 0.05), cos = (to_q . n) / |to_q|,
   // squared and multiplied through by |to_q|^2, so that no square root or division is needed.
@@ -31,9 +49,14 @@ int find_reusable_pixel(const Camera& camera, const ScreenBuffer& screen, uint32
   const float tolerance = kReuseFootprints * 2.0f * camera.tan_half_fovy * depth / static_cast<float>(camera.height);
   const float along = glm::dot(to_q, q_normal);
   const float obliquity2_distance2 = std::max(along * along, 0.05f * 0.05f * distance2);
-  const Vec3 gap = seen.position - q;
-  if (glm::dot(gap, gap) * obliquity2_distance2 > tolerance * tolerance * distance2) return -1;
-  return static_cast<int>(i);
+  const Vec3 gap = screen.pixels[i].position - q;
+  return glm::dot(gap, gap) * obliquity2_distance2 <= tolerance * tolerance * distance2;
+}
+
+int find_reusable_pixel(const Camera& camera, const ScreenBuffer& screen, uint32_t triangle, const Vec3& q,
+                        const Vec3& q_normal) {
+  const int pixel = screen_pixel_of(camera, screen, q);
+  return pixel >= 0 && pixel_saw_q(camera, screen, pixel, triangle, q, q_normal) ? pixel : -1;
 }
 
 namespace {
@@ -76,53 +99,67 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
   recompute.blinn_k = settings.blinn_k;
 
   const Frame shading_frame = Frame::from_normal(sp.shading_normal);
-  for (int s = 0; s < settings.l2_rays; ++s) {
-    const uint64_t bounce_sample = first_sample + static_cast<uint64_t>(s);
-    const uint64_t first_shadow_sample = bounce_sample * static_cast<uint64_t>(recompute.rays);
-    bounce_sampler.start_sample(bounce_sample);
-    Ray bounce;
-    if (!sample_bounce_ray(sp, shading_frame, bounce_sampler, bounce)) continue;
-    const Vec3& wi = bounce.dir;
-    ++rays_traced;
-    const Hit hit = intersect_closest(traced.accel, bounce);
-    if (!hit.found()) continue;
-    ++result.bounce_hits;
-    // The reuse test needs only q's position and plane; the full surface point only where L1(q) is traced.
-    const Vec3 q_position = scene.point(hit.triangle, hit.u, hit.v);
+  const bool reuse = settings.reuse != ReuseMode::kOff;
+  for (int batch_start = 0; batch_start < settings.l2_rays; batch_start += kBounceBatch) {
+    // Trace the batch first, starting the screen reads as each ray lands: the next ray's traversal then hides
+    // their cache misses, which otherwise cost more than the traversal itself.
+    std::array<PendingBounce, kBounceBatch> pending;
+    int pending_count = 0;
+    for (int s = batch_start; s < std::min(batch_start + kBounceBatch, settings.l2_rays); ++s) {
+      PendingBounce& b = pending[static_cast<size_t>(pending_count)];
+      b.sample = first_sample + static_cast<uint64_t>(s);
+      bounce_sampler.start_sample(b.sample);
+      if (!sample_bounce_ray(sp, shading_frame, bounce_sampler, b.ray)) continue;
+      ++rays_traced;
+      b.hit = intersect_closest(traced.accel, b.ray);
+      if (!b.hit.found()) continue;
+      // The reuse test needs only q's position and plane; the full surface point only where L1(q) is traced.
+      b.q_position = scene.point(b.hit.triangle, b.hit.u, b.hit.v);
+      b.pixel = reuse ? screen_pixel_of(camera, screen, b.q_position) : -1;
+      if (b.pixel >= 0) {
+        __builtin_prefetch(&screen.triangle[static_cast<size_t>(b.pixel)]);
+        __builtin_prefetch(&screen.pixels[static_cast<size_t>(b.pixel)]);
+      }
+      ++pending_count;
+    }
 
-    // L1(q) toward p: from the screen where the camera saw q, otherwise traced anew.
-    Vec3 l1_q(0.0f);
-    bool reused = false;
-    if (settings.reuse != ReuseMode::kOff) {
-      const Vec3 q_normal = glm::normalize(scene.geometric_normal_raw(hit.triangle));
-      const int pixel = find_reusable_pixel(camera, screen, hit.triangle, q_position, q_normal);
-      if (pixel >= 0) {
-        reused = true;
-        const size_t i = static_cast<size_t>(pixel);
-        l1_q = settings.reuse == ReuseMode::kAverage ? screen.l1_average[i] : screen.pixels[i].l1;
-        if (settings.reuse_diffuse_only) {
-          // The screen holds only the view-independent part; the view-dependent rest is traced toward p.
-          const Material& mq = scene.material_of(hit.triangle);
-          if (mq.has_specular() || settings.blinn_k < 1.0f) {
-            DirectLightOptions rest = recompute;
-            rest.specular_only = true;
-            l1_q += estimate_direct_light(traced, make_surface_point(scene, bounce, hit), rest, recompute_sampler,
-                                          first_shadow_sample, rays_traced);
+    for (int k = 0; k < pending_count; ++k) {
+      const PendingBounce& b = pending[static_cast<size_t>(k)];
+      ++result.bounce_hits;
+      const uint64_t first_shadow_sample = b.sample * static_cast<uint64_t>(recompute.rays);
+      // L1(q) toward p: from the screen where the camera saw q, otherwise traced anew.
+      Vec3 l1_q(0.0f);
+      bool reused = false;
+      if (b.pixel >= 0) {
+        const Vec3 q_normal = glm::normalize(scene.geometric_normal_raw(b.hit.triangle));
+        if (pixel_saw_q(camera, screen, b.pixel, b.hit.triangle, b.q_position, q_normal)) {
+          reused = true;
+          const auto i = static_cast<size_t>(b.pixel);
+          l1_q = settings.reuse == ReuseMode::kAverage ? screen.l1_average[i] : screen.pixels[i].l1;
+          if (settings.reuse_diffuse_only) {
+            // The screen holds only the view-independent part; the view-dependent rest is traced toward p.
+            const Material& mq = scene.material_of(b.hit.triangle);
+            if (mq.has_specular() || settings.blinn_k < 1.0f) {
+              DirectLightOptions rest = recompute;
+              rest.specular_only = true;
+              l1_q += estimate_direct_light(traced, make_surface_point(scene, b.ray, b.hit), rest,
+                                            recompute_sampler, first_shadow_sample, rays_traced);
+            }
           }
         }
       }
-    }
-    if (!reused)
-      l1_q = estimate_direct_light(traced, make_surface_point(scene, bounce, hit), recompute, recompute_sampler,
-                                   first_shadow_sample, rays_traced);
+      if (!reused)
+        l1_q = estimate_direct_light(traced, make_surface_point(scene, b.ray, b.hit), recompute, recompute_sampler,
+                                     first_shadow_sample, rays_traced);
 
-    // f cos / pdf with pdf = cos / pi.
-    const Vec3 contribution = eval_brdf(material, sp.shading_normal, wi, sp.wo, settings.blinn_k) * kPi * l1_q;
-    if (reused) {
-      result.from_reused += contribution;
-      ++result.reused;
-    } else {
-      result.from_recomputed += contribution;
+      // f cos / pdf with pdf = cos / pi.
+      const Vec3 contribution = eval_brdf(material, sp.shading_normal, b.ray.dir, sp.wo, settings.blinn_k) * kPi * l1_q;
+      if (reused) {
+        result.from_reused += contribution;
+        ++result.reused;
+      } else {
+        result.from_recomputed += contribution;
+      }
     }
   }
   const float inv = 1.0f / static_cast<float>(settings.l2_rays);
