@@ -105,6 +105,32 @@ TEST(Bench, TraversalSectionCountsLueursWorkPerRay) {
   EXPECT_TRUE(j["results"].empty());  // throughput was not asked for
 }
 
+TEST(Bench, FrameSectionCountsTheRenderersRaysByQuery) {
+  const nlohmann::json j = smoke_run_json("--sections frame --only default");
+  ASSERT_TRUE(j.is_object());
+  const auto& frames = j["frames"];
+  ASSERT_TRUE(frames.is_array());
+  ASSERT_FALSE(frames.empty());
+  for (const auto& f : frames) {
+    EXPECT_EQ(f["scene"], "default");
+    const int count = f["frames"].get<int>();
+    EXPECT_GE(count, 2);
+    // One camera ray per pixel of the 24 x 24 smoke view per frame; up to 16 bounce rays per primary hit; and the
+    // shadow rays of 16 L1 samples at each hit plus 2 at each recomputed bounce hit.
+    const auto primary = f["rays"]["primary"].get<uint64_t>(), bounce = f["rays"]["bounce"].get<uint64_t>(),
+               any_hit = f["rays"]["any_hit"].get<uint64_t>();
+    EXPECT_EQ(primary, static_cast<uint64_t>(count) * 24u * 24u);
+    EXPECT_GT(bounce, primary);
+    EXPECT_LE(bounce, 16u * primary);
+    EXPECT_GT(any_hit, primary);
+    EXPECT_LE(any_hit, (16u + 16u * 2u) * primary);
+    EXPECT_GT(f["renderer_mrays"].get<double>(), 0.0);
+    EXPECT_GT(f["arrays_mrays"].get<double>(), 0.0);
+  }
+  // The comparison needs the arrays' throughput: it was measured even though only the frame section was asked for.
+  EXPECT_FALSE(j["results"].empty());
+}
+
 TEST(Bench, BadInputIsOneLineAndStatusTwo) {
   for (const std::string args : {"--no-such-option", "--sections build,nonsense", "--json /no/such/dir/b.json"}) {
     const test::CommandResult r = run_bench(args);

@@ -4,12 +4,14 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <sstream>
 
 #include "bench/bench_convergence.h"
+#include "bench/bench_frame.h"
 #include "bench/bench_rays.h"
 #include "bench/bench_scenes.h"
 #include "bench/bench_throughput.h"
@@ -34,6 +36,7 @@ struct BenchOptions {
   std::string scenes_dir = LUEUR_SHARED_SCENES;
   std::set<std::string> sections = {"build", "throughput", "convergence"};
   int ray_size = 512;  ///< rays are generated for a ray_size x ray_size view
+  double frame_seconds = 3.0;  ///< the renderer's frames per scene and thread count, at least (section frame)
   TimingOptions timing;
   ConvergenceOptions convergence;
 };
@@ -56,7 +59,8 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
   app.add_option("--rounds", o.rounds, "alternating timing rounds per figure (default 5; the median is kept)")
       ->check(CLI::Range(1, 1000));
   app.add_option("--sections", sections,
-                 "comma-separated: build,throughput,convergence (default), traversal (nodes per ray)");
+                 "comma-separated: build,throughput,convergence (default), traversal (nodes per ray), frame (the "
+                 "renderer's rays per second against the same rays in the benchmark's arrays)");
   app.add_option("--reference-frames", reference_frames, "frames of each convergence reference (default 128)")
       ->check(CLI::Range(1, 100000));
   app.add_option("--convergence-seconds", convergence_seconds, "equal time per convergence variant (default 20)")
@@ -78,18 +82,20 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
     std::istringstream in(sections);
     std::string name;
     while (std::getline(in, name, ',')) {
-      if (name != "build" && name != "throughput" && name != "traversal" && name != "convergence")
-        throw UsageError("--sections: '" + name + "' is not one of build|throughput|traversal|convergence");
+      if (name != "build" && name != "throughput" && name != "traversal" && name != "convergence" && name != "frame")
+        throw UsageError("--sections: '" + name + "' is not one of build|throughput|traversal|convergence|frame");
       o.sections.insert(name);
     }
   }
   if (o.quick) {
     o.ray_size = 192;
+    o.frame_seconds = 0.5;
     o.timing = {0.1, 3};
     o.convergence = {128, 128, 32, 1.5, 0, 1};
   }
   if (o.smoke) {
     o.ray_size = 24;
+    o.frame_seconds = 0.0;
     o.timing = {0.001, 1};
     o.convergence = {16, 16, 2, 0.001, 0, 1};
     o.scenes_dir.clear();
@@ -133,8 +139,11 @@ TraversalCounts count_traversal(const Bvh& bvh, const std::vector<Ray>& rays, Qu
 }
 
 int run(const BenchOptions& o) {
-  Json results = Json::array(), builds = Json::array(), traversal = Json::array(), convergence = Json::array();
-  const bool need_rays = o.sections.count("throughput") || o.sections.count("traversal");
+  Json results = Json::array(), builds = Json::array(), traversal = Json::array(), convergence = Json::array(),
+       frames = Json::array();
+  // The frame section compares with the throughput of the same scene's arrays, so it measures them too.
+  const bool throughput = o.sections.count("throughput") || o.sections.count("frame");
+  const bool need_rays = throughput || o.sections.count("traversal");
   const bool need_scenes = o.sections.count("build") || need_rays;
   if (!embree_available()) std::fprintf(stderr, "lueur-bench: this build has no Embree: Lueur's figures only\n");
 
@@ -149,7 +158,7 @@ int run(const BenchOptions& o) {
     std::vector<ThreadPool*> pools = {&one};
     if (all.thread_count() > 1) pools.push_back(&all);
 
-    if (o.sections.count("throughput"))
+    if (throughput)
       std::printf("%-16s %9s %-8s %7s %10s %10s %7s %9s\n", "scene", "triangles", "rays", "threads", "lueur", "embree",
                   "ratio", "agree");
     for (BenchScene& b : scenes) {
@@ -193,7 +202,8 @@ int run(const BenchOptions& o) {
         std::fprintf(stderr, "lueur-bench: %s %s rays: %.2f nodes, %.2f leaves, %.2f triangle groups per ray\n",
                      b.name.c_str(), kind.name, per_ray(c.nodes), per_ray(c.leaves), per_ray(c.groups));
       }
-      if (!o.sections.count("throughput")) continue;
+      if (!throughput) continue;
+      std::map<std::pair<std::string, int>, double> mrays;  // (kind, threads) -> Lueur's Mrays/s
       for (const auto& kind : kinds)
         for (ThreadPool* pool : pools) {
           const Throughput t = measure_throughput(*kind.rays, kind.query, lueur.bvh, embree.get(), *pool, o.timing);
@@ -208,7 +218,27 @@ int run(const BenchOptions& o) {
           std::printf("%-16s %9zu %-8s %7d %10.2f %10.2f %7.3f %9.6f\n", b.name.c_str(), triangles, kind.name,
                       pool->thread_count(), t.lueur, t.embree.value_or(0.0), ratio, t.agreement);
           std::fflush(stdout);
+          mrays[{kind.name, pool->thread_count()}] = t.lueur;
         }
+      if (!o.sections.count("frame")) continue;
+      for (ThreadPool* pool : pools) {
+        const int threads = pool->thread_count();
+        const FrameFigures f = measure_frames(b, o.ray_size, *pool, o.frame_seconds);
+        const double mix = ray_mix_mrays(f, mrays[{"primary", threads}], mrays[{"bounce", threads}],
+                                         mrays[{"shadow", threads}]);
+        const double ratio = mix > 0.0 ? f.renderer_mrays / mix : 0.0;
+        frames.push_back(Json{{"scene", b.name},
+                              {"threads", threads},
+                              {"frames", f.frames},
+                              {"seconds", f.seconds},
+                              {"rays", {{"primary", f.primary}, {"bounce", f.bounce}, {"any_hit", f.any_hit}}},
+                              {"renderer_mrays", f.renderer_mrays},
+                              {"arrays_mrays", mix},
+                              {"ratio", ratio}});
+        std::printf("%-16s %9zu %-8s %7d %10.2f %10.2f %7.3f  (renderer; the same rays in the arrays)\n",
+                    b.name.c_str(), triangles, "frame", threads, f.renderer_mrays, mix, ratio);
+        std::fflush(stdout);
+      }
     }
   }
   if (o.sections.count("convergence")) convergence = run_convergence(o.convergence, stderr);
@@ -216,6 +246,7 @@ int run(const BenchOptions& o) {
   if (!o.json_path.empty()) {
     Json out{{"results", results}, {"build", builds}, {"convergence", convergence}};
     if (o.sections.count("traversal")) out["traversal"] = traversal;
+    if (o.sections.count("frame")) out["frames"] = frames;
     write_file_atomically(o.json_path, out.dump(2) + "\n");
     std::printf("%s\n", o.json_path.c_str());
   }

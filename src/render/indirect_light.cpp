@@ -111,6 +111,7 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
       bounce_sampler.start_sample(b.sample);
       if (!sample_bounce_ray(sp, shading_frame, bounce_sampler, b.ray)) continue;
       ++rays_traced;
+      ++result.bounce_rays;
       b.hit = intersect_closest(traced.accel, b.ray);
       if (!b.hit.found()) continue;
       // The reuse test needs only q's position and plane; the full surface point only where L1(q) is traced.

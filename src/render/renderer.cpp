@@ -30,7 +30,7 @@ void set_layer(FrameBuffers& frame, Layer layer, size_t pixel, const Vec3& value
 
 /// Phase 1 for one pixel.
 void trace_primary(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, const Film& film,
-                   int x, int y, uint64_t frame, FrameBuffers& out, uint64_t& rays) {
+                   int x, int y, uint64_t frame, FrameBuffers& out, uint64_t& rays, uint64_t& primary_rays) {
   const size_t i = pixel_index(x, y, camera.width);
   const uint64_t pixel = i;
   PixelSampler camera_sampler(settings.sampler, settings.seed, pixel, frame, RngPurpose::kCamera);
@@ -38,6 +38,7 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
   const Vec2 jitter = camera_sampler.get_2d();
   const Ray ray = camera_ray(camera, static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y);
   ++rays;
+  ++primary_rays;
   const Hit hit = intersect_closest(traced.accel, ray);
   if (!hit.found()) return;
 
@@ -80,7 +81,8 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
 
 /// Phase 2 for one pixel.
 void trace_indirect(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, int x, int y,
-                    uint64_t frame, FrameBuffers& out, uint64_t& rays, uint64_t& bounce_hits, uint64_t& reused) {
+                    uint64_t frame, FrameBuffers& out, uint64_t& rays, uint64_t& bounce_rays, uint64_t& bounce_hits,
+                    uint64_t& reused) {
   const size_t i = pixel_index(x, y, camera.width);
   const SurfacePoint& sp = out.hits[i];
   if (sp.triangle == kNoHit) return;
@@ -94,6 +96,7 @@ void trace_indirect(const TracedScene& traced, const Camera& camera, const Rende
   set_layer(out, Layer::kL2Recomputed, i, r.from_recomputed);
   const float fraction = r.bounce_hits > 0 ? static_cast<float>(r.reused) / static_cast<float>(r.bounce_hits) : 0.0f;
   set_layer(out, Layer::kReuseFraction, i, Vec3(fraction));
+  bounce_rays += static_cast<uint64_t>(r.bounce_rays);
   bounce_hits += static_cast<uint64_t>(r.bounce_hits);
   reused += static_cast<uint64_t>(r.reused);
 }
@@ -113,7 +116,7 @@ void for_each_tile(ThreadPool& pool, int width, int height, const std::atomic<bo
 
 /// Per-worker counters, padded apart so that workers do not share cache lines.
 struct alignas(64) WorkerCounters {
-  uint64_t rays = 0, bounce_hits = 0, reused = 0;
+  uint64_t rays = 0, primary_rays = 0, bounce_rays = 0, bounce_hits = 0, reused = 0;
 };
 
 }  // namespace
@@ -137,18 +140,21 @@ FrameResult render_frame(const TracedScene& traced, const Camera& camera, const 
 
   std::vector<WorkerCounters> counters(static_cast<size_t>(pool.thread_count()));
   for_each_tile(pool, width, height, cancel, [&](int x, int y, int worker) {
-    trace_primary(traced, camera, settings, film, x, y, frame, buffers, counters[static_cast<size_t>(worker)].rays);
+    WorkerCounters& c = counters[static_cast<size_t>(worker)];
+    trace_primary(traced, camera, settings, film, x, y, frame, buffers, c.rays, c.primary_rays);
   });
   if (settings.pass_enabled(Pass::kL2)) {
     const Clock::time_point l2_start = Clock::now();
     for_each_tile(pool, width, height, cancel, [&](int x, int y, int worker) {
       WorkerCounters& c = counters[static_cast<size_t>(worker)];
-      trace_indirect(traced, camera, settings, x, y, frame, buffers, c.rays, c.bounce_hits, c.reused);
+      trace_indirect(traced, camera, settings, x, y, frame, buffers, c.rays, c.bounce_rays, c.bounce_hits, c.reused);
     });
     result.l2_seconds = std::chrono::duration<double>(Clock::now() - l2_start).count();
   }
   for (const WorkerCounters& c : counters) {
     result.rays += c.rays;
+    result.primary_rays += c.primary_rays;
+    result.bounce_rays += c.bounce_rays;
     result.l2_bounce_hits += c.bounce_hits;
     result.l2_reused += c.reused;
   }

@@ -17,6 +17,8 @@ inline constexpr int kTileSize = 16;
 
 struct FrameResult {
   uint64_t rays = 0;      ///< primary + shadow + bounce rays traced in this frame
+  uint64_t primary_rays = 0;    ///< of those, camera rays (closest hit)
+  uint64_t bounce_rays = 0;     ///< L2 bounce rays (closest hit); the rest are any-hit (shadow and AO) rays
   uint64_t l2_bounce_hits = 0;  ///< L2 bounce rays that hit a surface
   uint64_t l2_reused = 0;       ///< of those, how many reused L1 from the screen
   double l2_seconds = 0.0;      ///< wall time of the L2 phase
