@@ -1,0 +1,226 @@
+#!/usr/bin/env python3
+"""Time to quality, Lueur against Blender's Cycles on the same scene, camera and light transport (issue 18).
+
+For each Cycles sample count (16, 64, 256 by default) Cycles renders once and reports its own render time T; Lueur
+then renders with its default settings for T and for T / 2 (`--time-limit`), and every image's relMSE against a
+long Cycles reference is printed: mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01). Lueur also renders
+a long image of its own with another seed, whose relMSE against Cycles' reference is the floor Lueur's error can
+reach (what still differs between the renderers, and the reference's own noise); Lueur's images are measured
+against it too.
+
+Both renderers see the same pure-Lambert copy of the scene (Ks dropped from its MTL), Le + L1 + L2 at weight 1,
+one bounce, a box filter and no denoising (see render_cycles.py). Needs `blender` (Debian's package); the build and
+the tests never do. Usage: scripts/compare-cycles.sh [options] (--help lists them).
+"""
+import argparse
+import hashlib
+import json
+import os
+import re
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+# name -> (the scene, or "default" for Lueur's embedded one; its camera "ex ey ez tx ty tz fovy")
+PRESETS = {
+    "cornell-original": ("{shared}/scenes/cornell-original/CornellBox-Original.obj", "0 1 3.9 0 1 0 40"),
+    "default": ("default", "278 273 -800 278 273 0 39.3077"),
+}
+
+
+def read_pfm(path):
+    with open(path, "rb") as f:
+        data = f.read()
+    # Header: "PF", width height, scale (negative: little-endian), each on its own line.
+    parts = data.split(b"\n", 3)
+    if parts[0].strip() != b"PF":
+        raise SystemExit("compare: %s is not a colour PFM" % path)
+    width, height = (int(v) for v in parts[1].split())
+    order = "<" if float(parts[2]) < 0 else ">"
+    count = 3 * width * height
+    return width, height, struct.unpack(order + "%df" % count, parts[3][: 4 * count])
+
+
+def relative_mse(image, reference):
+    if image[:2] != reference[:2]:
+        raise SystemExit("compare: images of different sizes")
+    total = 0.0
+    for x, r in zip(image[2], reference[2]):
+        total += (x - r) * (x - r) / (r * r + 0.01)
+    return total / len(reference[2])
+
+
+def run(command, what):
+    result = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if result.returncode != 0:
+        tail = "\n".join(result.stdout.splitlines()[-15:])
+        raise SystemExit("compare: %s failed (status %d):\n%s" % (what, result.returncode, tail))
+    return result.stdout
+
+
+def lambert_copy(obj_path, folder):
+    """Copies the OBJ and its MTL libraries into `folder`, the MTLs without Ks (both renderers then see Kd only)."""
+    os.makedirs(folder, exist_ok=True)
+    source_folder = os.path.dirname(os.path.abspath(obj_path))
+    target = os.path.join(folder, os.path.basename(obj_path))
+    shutil.copyfile(obj_path, target)
+    with open(obj_path, encoding="utf-8", errors="replace") as f:
+        libraries = [w for line in f if line.startswith("mtllib") for w in line.split()[1:]]
+    for library in libraries:
+        source = os.path.join(source_folder, library)
+        if not os.path.isfile(source):
+            continue
+        with open(source, encoding="utf-8", errors="replace") as f:
+            kept = [line for line in f if not re.match(r"\s*Ks\s", line)]
+        with open(os.path.join(folder, library), "w", encoding="utf-8") as f:
+            f.writelines(kept)
+    return target
+
+
+def cycles_render(args, obj, spp, seed, out):
+    output = run([args.blender, "-b", "--factory-startup", "-P", os.path.join(HERE, "render_cycles.py"), "--",
+                  "--obj", obj, "--out", out, "--camera", args.camera, "--size", args.size, "--spp", str(spp),
+                  "--seed", str(seed), "--threads", str(args.threads)], "Cycles at %d samples" % spp)
+    match = re.search(r"cycles_render_seconds ([0-9.]+)", output)
+    if not match:
+        raise SystemExit("compare: Cycles printed no render time")
+    return float(match.group(1))
+
+
+def lueur_render(args, obj, out, seconds=0.0, frames=1000000, seed=None):
+    command = [args.lueur, obj, "--headless", "--out", out, "--camera", args.camera, "--size", args.size,
+               "--passes", "le,l1,l2", "--weights", "le=1,l1=1,l2=1", "--blinn-k", "1", "--smooth-normals", "off",
+               "--frames", str(frames), "--seed", str(args.seed if seed is None else seed)]
+    if seconds > 0.0:
+        command += ["--time-limit", "%.4f" % seconds]
+    if args.threads > 0:
+        command += ["--threads", str(args.threads)]
+    command += args.lueur_option
+    output = run(command, "Lueur")
+    match = re.search(r"(\d+) frames in ([0-9.]+) s", output)
+    if not match:
+        raise SystemExit("compare: Lueur printed no frame count")
+    return int(match.group(1)), float(match.group(2))
+
+
+def parse_arguments():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("scene", help="a preset (%s) or an OBJ file (then give --camera)" % ", ".join(PRESETS))
+    parser.add_argument("--camera", help="ex ey ez tx ty tz fovy (default: the preset's)")
+    parser.add_argument("--size", default="256x256")
+    parser.add_argument("--spp", default="16,64,256", help="Cycles sample counts, comma-separated")
+    parser.add_argument("--reference-spp", type=int, default=4096)
+    parser.add_argument("--lueur-reference-frames", type=int, default=1024,
+                        help="frames of Lueur's own long render, with another seed (0: none)")
+    parser.add_argument("--threads", type=int, default=0, help="both renderers (0: all cores)")
+    parser.add_argument("--seed", type=int, default=1, help="Lueur's seed")
+    parser.add_argument("--lueur", default=os.environ.get("LUEUR_EXE", "lueur"))
+    parser.add_argument("--blender", default="blender")
+    parser.add_argument("--shared", default=os.path.join(HERE, "..", "..", "..", "shared"))
+    parser.add_argument("--cache", default=os.path.join(os.path.expanduser("~"), ".cache", "lueur-cycles"),
+                        help="where references are kept between runs")
+    parser.add_argument("--json", help="also write the figures to this file")
+    parser.add_argument("--lueur-option", action="append", default=[],
+                        help="an extra option for Lueur (repeat for more), e.g. --lueur-option=--sampler=independent")
+    return parser.parse_args()
+
+
+def main():
+    args = parse_arguments()
+    if shutil.which(args.blender) is None:
+        raise SystemExit("compare: no '%s' on PATH: install Debian's blender package to compare with Cycles"
+                         % args.blender)
+    work = tempfile.mkdtemp(prefix="lueur-cycles-")
+    try:
+        scene, preset_camera = PRESETS.get(args.scene, (args.scene, None))
+        args.camera = args.camera or preset_camera
+        if not args.camera:
+            raise SystemExit("compare: give --camera for a scene file")
+        if scene == "default":
+            scene = os.path.join(work, "exported", "default.obj")
+            os.makedirs(os.path.dirname(scene))
+            run([args.lueur, "--export-default-scene", scene], "exporting the default scene")
+        scene = scene.format(shared=os.path.abspath(args.shared))
+        if not os.path.isfile(scene):
+            raise SystemExit("compare: no scene file %s" % scene)
+        obj = lambert_copy(scene, os.path.join(work, "lambert"))
+
+        # The reference depends only on what Cycles sees: cached under a hash of it.
+        key = hashlib.sha256()
+        for name in sorted(os.listdir(os.path.dirname(obj))):
+            with open(os.path.join(os.path.dirname(obj), name), "rb") as f:
+                key.update(name.encode() + f.read())
+        key.update(("%s|%s|%d" % (args.camera, args.size, args.reference_spp)).encode())
+        with open(os.path.join(HERE, "render_cycles.py"), "rb") as f:
+            key.update(f.read())
+        os.makedirs(args.cache, exist_ok=True)
+        reference_path = os.path.join(args.cache, key.hexdigest()[:20] + ".pfm")
+        if not os.path.isfile(reference_path):
+            print("compare: Cycles reference, %d samples (minutes; kept in %s)" % (args.reference_spp, args.cache),
+                  flush=True)
+            seconds = cycles_render(args, obj, args.reference_spp, 7, reference_path)
+            print("compare: reference took %.1f s" % seconds, flush=True)
+        reference = read_pfm(reference_path)
+
+        # Lueur's own long render, with another seed: its relMSE against Cycles' reference is the floor Lueur's
+        # error can reach there (what still differs between the renderers, and the reference's own noise), and it
+        # is the second reference Lueur's images are measured against.
+        own = None
+        if args.lueur_reference_frames > 0:
+            path = os.path.join(work, "lueur-reference.pfm")
+            frames, seconds = lueur_render(args, obj, path, frames=args.lueur_reference_frames, seed=args.seed + 100)
+            own_image = read_pfm(path)
+            own = {"frames": frames, "seconds": seconds, "relmse": relative_mse(own_image, reference)}
+            print("compare: Lueur's own reference: %d frames in %.1f s, relMSE %.6f against Cycles'"
+                  % (frames, seconds, own["relmse"]), flush=True)
+
+        rows = []
+        for spp in (int(s) for s in args.spp.split(",")):
+            cycles_path = os.path.join(work, "cycles-%d.pfm" % spp)
+            cycles_seconds = cycles_render(args, obj, spp, 1, cycles_path)
+            row = {"spp": spp, "cycles_seconds": cycles_seconds,
+                   "cycles_relmse": relative_mse(read_pfm(cycles_path), reference)}
+            for label, budget in (("same", cycles_seconds), ("half", cycles_seconds / 2.0)):
+                path = os.path.join(work, "lueur-%d-%s.pfm" % (spp, label))
+                frames, seconds = lueur_render(args, obj, path, seconds=budget)
+                image = read_pfm(path)
+                row[label] = {"frames": frames, "seconds": seconds, "relmse": relative_mse(image, reference),
+                              "relmse_own": relative_mse(image, own_image) if own else None}
+            rows.append(row)
+            print("compare: %4d spp: Cycles %.2f s relMSE %.6f | Lueur in the same time: %d frames, %.6f | in half: "
+                  "%d frames, %.6f" % (spp, cycles_seconds, row["cycles_relmse"], row["same"]["frames"],
+                                       row["same"]["relmse"], row["half"]["frames"], row["half"]["relmse"]),
+                  flush=True)
+
+        def own_text(entry):
+            return " (%.6f)" % entry["relmse_own"] if entry["relmse_own"] is not None else ""
+
+        print()
+        print("%s, %s, camera \"%s\"; relMSE against Cycles at %d samples (in brackets: against Lueur's own reference)"
+              % (args.scene, args.size, args.camera, args.reference_spp))
+        print("| Cycles | time | relMSE | Lueur, same time | relMSE | Lueur, half the time | relMSE | half reaches |")
+        print("|---|---:|---:|---:|---:|---:|---:|---|")
+        for r in rows:
+            print("| %d spp | %.2f s | %.6f | %d frames | %.6f%s | %d frames | %.6f%s | %s |" % (
+                r["spp"], r["cycles_seconds"], r["cycles_relmse"], r["same"]["frames"], r["same"]["relmse"],
+                own_text(r["same"]), r["half"]["frames"], r["half"]["relmse"], own_text(r["half"]),
+                "yes" if r["half"]["relmse"] <= r["cycles_relmse"] else "no"))
+        if own:
+            print("Lueur's own reference: %d frames (%.1f s), relMSE %.6f against Cycles' (the floor)" % (
+                own["frames"], own["seconds"], own["relmse"]))
+        if args.json:
+            partial = args.json + ".partial"
+            with open(partial, "w") as f:
+                json.dump({"scene": args.scene, "size": args.size, "camera": args.camera,
+                           "reference_spp": args.reference_spp, "rows": rows, "lueur_reference": own}, f, indent=2)
+            os.replace(partial, args.json)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,231 @@
+# Blender side of scripts/compare-cycles.sh: renders an OBJ + MTL scene with Cycles the way Lueur renders it with
+# `--blinn-k 1 --smooth-normals off` and every pass at weight 1 (Le + L1 + L2), and writes a linear PFM.
+#
+#   blender -b --factory-startup -P render_cycles.py -- --obj S.obj --out I.pfm --camera "ex ey ez tx ty tz fovy" \
+#       --size 256x256 --spp 64 [--seed 1] [--up "0 1 0"] [--threads 0] [--bounces 1]
+#
+# What "the same" means here:
+#  - materials are Lambertian with the MTL's Kd; Ks is ignored (the driver hands both renderers Ks-free copies);
+#  - an emitter (Ke > 0) shines from the side its vertices wind counter-clockwise and is black from behind, as in
+#    Lueur, and still reflects light with its Kd;
+#  - one bounce: paths camera - p - light (L1) and camera - p - q - light (L2), plus what the camera sees (Le);
+#  - a box filter one pixel wide (Lueur's uniform jitter), no denoising, no adaptive sampling, no clamping, a black
+#    world, the Standard view transform and linear 32-bit output.
+# Prints "cycles_render_seconds T": the time of the render call alone (scene sync, Cycles' BVH and the samples),
+# not Blender's start-up nor the file written afterwards.
+import argparse
+import array
+import math
+import os
+import sys
+import time
+
+import bpy
+from mathutils import Matrix, Vector
+
+
+def parse_arguments():
+    parser = argparse.ArgumentParser(prog="render_cycles.py")
+    parser.add_argument("--obj", required=True)
+    parser.add_argument("--out", required=True)
+    parser.add_argument("--camera", required=True, help="ex ey ez tx ty tz fovy_degrees")
+    parser.add_argument("--up", default="0 1 0")
+    parser.add_argument("--size", default="256x256")
+    parser.add_argument("--spp", type=int, required=True)
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--threads", type=int, default=0, help="0: all")
+    parser.add_argument("--bounces", type=int, choices=(0, 1), default=1, help="0: Le + L1 only; 1: Le + L1 + L2")
+    return parser.parse_args(sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else [])
+
+
+def read_materials(mtl_path):
+    """name -> (Kd, Ke); a missing file gives none (every face then takes Lueur's default grey)."""
+    materials, name = {}, None
+    if not os.path.isfile(mtl_path):
+        return materials
+    with open(mtl_path, encoding="utf-8", errors="replace") as f:
+        for raw in f:
+            words = raw.split("#", 1)[0].split()
+            if not words:
+                continue
+            if words[0] == "newmtl" and len(words) > 1:
+                name = words[1]
+                materials[name] = [(0.8, 0.8, 0.8), (0.0, 0.0, 0.0)]
+            elif name is not None and words[0] in ("Kd", "Ke") and len(words) >= 4:
+                materials[name][0 if words[0] == "Kd" else 1] = tuple(float(w) for w in words[1:4])
+    return materials
+
+
+def read_obj(obj_path):
+    """Vertices, triangles (fans of each face) and each triangle's material name."""
+    vertices, triangles, names, materials, current = [], [], [], {}, None
+    folder = os.path.dirname(obj_path)
+    with open(obj_path, encoding="utf-8", errors="replace") as f:
+        for raw in f:
+            words = raw.split("#", 1)[0].split()
+            if not words:
+                continue
+            if words[0] == "v":
+                vertices.append(tuple(float(w) for w in words[1:4]))
+            elif words[0] == "mtllib":
+                for library in words[1:]:
+                    materials.update(read_materials(os.path.join(folder, library)))
+            elif words[0] == "usemtl":
+                current = words[1] if len(words) > 1 else None
+            elif words[0] == "f":
+                corners = []
+                for word in words[1:]:
+                    index = int(word.split("/")[0])
+                    corners.append(index - 1 if index > 0 else len(vertices) + index)
+                for k in range(1, len(corners) - 1):
+                    triangles.append((corners[0], corners[k], corners[k + 1]))
+                    names.append(current)
+    return vertices, triangles, names, materials
+
+
+def without_twins(triangles, names):
+    """Drops exact duplicates (the same three vertices): CornellBox-Original has some. Cycles, which does not offset
+    ray origins, would shadow a face with its own twin; Lueur lights it."""
+    seen, kept_triangles, kept_names = set(), [], []
+    for triangle, name in zip(triangles, names):
+        key = frozenset(triangle)
+        if len(key) < 3 or key in seen:
+            continue
+        seen.add(key)
+        kept_triangles.append(triangle)
+        kept_names.append(name)
+    return kept_triangles, kept_names
+
+
+def make_material(name, kd, ke):
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    nodes.clear()
+    output = nodes.new("ShaderNodeOutputMaterial")
+    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+    diffuse.inputs["Color"].default_value = (*kd, 1.0)
+    diffuse.inputs["Roughness"].default_value = 0.0
+    if max(ke) <= 0.0:
+        links.new(diffuse.outputs["BSDF"], output.inputs["Surface"])
+        return material
+    # One-sided emission: strength 1 - backfacing, so 1 in front and 0 behind.
+    geometry = nodes.new("ShaderNodeNewGeometry")
+    front = nodes.new("ShaderNodeMath")
+    front.operation = "SUBTRACT"
+    front.inputs[0].default_value = 1.0
+    links.new(geometry.outputs["Backfacing"], front.inputs[1])
+    emission = nodes.new("ShaderNodeEmission")
+    emission.inputs["Color"].default_value = (*ke, 1.0)
+    links.new(front.outputs["Value"], emission.inputs["Strength"])
+    both = nodes.new("ShaderNodeAddShader")
+    links.new(emission.outputs["Emission"], both.inputs[0])
+    links.new(diffuse.outputs["BSDF"], both.inputs[1])
+    links.new(both.outputs["Shader"], output.inputs["Surface"])
+    return material
+
+
+def look_at(camera_object, eye, target, up, fovy_degrees):
+    """Blender cameras look down their local -Z with +Y up: the rotation's columns are right, up and -forward."""
+    forward = (target - eye).normalized()
+    right = forward.cross(up).normalized()
+    true_up = right.cross(forward)
+    rotation = Matrix((right, true_up, -forward)).transposed()
+    camera_object.location = eye
+    camera_object.rotation_euler = rotation.to_euler()
+    camera_object.data.sensor_fit = "VERTICAL"
+    camera_object.data.angle_y = math.radians(fovy_degrees)
+
+
+def main():
+    args = parse_arguments()
+    width, height = (int(v) for v in args.size.lower().split("x"))
+    camera = [float(v) for v in args.camera.split()]
+    up = Vector([float(v) for v in args.up.split()])
+
+    vertices, triangles, names, materials = read_obj(args.obj)
+    triangles, names = without_twins(triangles, names)
+    print("render_cycles: %d vertices, %d triangles" % (len(vertices), len(triangles)))
+
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    mesh = bpy.data.meshes.new("lueur-scene")
+    mesh.from_pydata(vertices, [], triangles)
+    slots = sorted({n or "" for n in names})
+    for slot in slots:
+        kd, ke = materials.get(slot, [(0.8, 0.8, 0.8), (0.0, 0.0, 0.0)])
+        mesh.materials.append(make_material(slot or "default", kd, ke))
+    slot_of = {slot: i for i, slot in enumerate(slots)}
+    mesh.polygons.foreach_set("material_index", [slot_of[n or ""] for n in names])
+    mesh.update()
+    scene.collection.objects.link(bpy.data.objects.new("lueur-scene", mesh))
+
+    world = bpy.data.worlds.new("black")
+    world.use_nodes = True
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
+    scene.world = world
+
+    camera_object = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
+    scene.collection.objects.link(camera_object)
+    scene.camera = camera_object
+    eye = Vector(camera[0:3])
+    look_at(camera_object, eye, Vector(camera[3:6]), up, camera[6])
+    # Blender clips at 0.1 and 100 units by default; scenes in millimetres reach past that.
+    farthest = max(((Vector(v) - eye).length for v in vertices), default=1.0)
+    camera_object.data.clip_start = 1e-5 * farthest
+    camera_object.data.clip_end = 2.0 * farthest
+
+    render = scene.render
+    render.engine = "CYCLES"
+    render.resolution_x, render.resolution_y, render.resolution_percentage = width, height, 100
+    render.film_transparent = False
+    if args.threads > 0:
+        render.threads_mode = "FIXED"
+        render.threads = args.threads
+    cycles = scene.cycles
+    cycles.device = "CPU"
+    cycles.samples = args.spp
+    cycles.seed = args.seed
+    cycles.use_adaptive_sampling = False
+    cycles.use_denoising = False
+    cycles.max_bounces = args.bounces
+    cycles.diffuse_bounces = args.bounces
+    cycles.glossy_bounces = args.bounces
+    cycles.transmission_bounces = 0
+    cycles.volume_bounces = 0
+    cycles.transparent_max_bounces = 0
+    cycles.sample_clamp_direct = 0.0
+    cycles.sample_clamp_indirect = 0.0
+    cycles.pixel_filter_type = "BOX"
+    cycles.filter_width = 1.0
+    scene.view_settings.view_transform = "Standard"
+    scene.view_settings.look = "None"
+    scene.view_settings.exposure = 0.0
+    scene.view_settings.gamma = 1.0
+
+    start = time.perf_counter()
+    bpy.ops.render.render()
+    seconds = time.perf_counter() - start
+    print("cycles_render_seconds %.4f" % seconds)
+
+    # The render result holds linear radiance; saved as EXR, read back, written as PFM (rows bottom to top, which is
+    # also Blender's order).
+    exr = args.out + ".exr"
+    render.image_settings.file_format = "OPEN_EXR"
+    render.image_settings.color_depth = "32"
+    bpy.data.images["Render Result"].save_render(exr, scene=scene)
+    image = bpy.data.images.load(exr)
+    rgba = array.array("f", bytes(4 * 4 * width * height))
+    image.pixels.foreach_get(rgba)
+    rgb = array.array("f", (rgba[i] for i in range(len(rgba)) if i % 4 != 3))
+    if sys.byteorder != "little":
+        rgb.byteswap()
+    partial = args.out + ".partial"
+    with open(partial, "wb") as f:
+        f.write(b"PF\n%d %d\n-1.0\n" % (width, height))
+        f.write(rgb.tobytes())
+    os.replace(partial, args.out)
+    os.remove(exr)
+
+
+main()
