@@ -140,7 +140,7 @@ TEST(DirectLight, MatchesLambertPolygonFormulaUnderARectangularLight) {
 
 // The default scene's ceiling beside the wall lamp, seen by pixels (110..150, 51) of a 256 x 256 render: only the
 // lamp lights it (the ceiling light hangs below the ceiling and faces away), nothing stands between, so its L1 is
-// Kd / pi times the lamp square's irradiance by Lambert's formula. Blender's Cycles 3.4 reads 5-35% low at these
+// Kd / pi times the lamp square's irradiance by Lambert's formula. Blender's Cycles 3.4 reads 4-35% low at these
 // points (BENCHMARKS.md, "Time to quality against Cycles"); Lueur must not.
 TEST(DirectLight, DefaultSceneCeilingBesideTheWallLampMatchesLambertsFormula) {
   const auto traced = prepare_scene(make_default_scene());
