@@ -153,9 +153,11 @@ TEST(Accelerator, EmbreeRendersTheSameImage) {
   }
   std::cout << "[ image    ] " << differing << " of " << pixels << " pixels differ; mean |difference| / mean value "
             << abs_diff / sum_a << "\n";
-  // Tolerance (measured: 1 pixel of 16,384, 2e-9 of the sum): at most 0.1% of the pixels differ at all, and the
-  // total absolute difference stays below 1e-5 of the image's sum.
-  EXPECT_LE(differing, pixels / 1000);
+  // The back-ends may disagree on a ray that grazes an edge. Measured: 1 pixel of 16,384 (2e-9 of the sum) with
+  // the samples drawn before 741ceca; 17 pixels (8e-9) after: two pixels' L1 differ by a shadow ray, and L2's reuse
+  // carries each to the 5-10 pixels whose bounce rays read it. Tolerance: at most 0.5% of the pixels differ at
+  // all, and the total absolute difference stays below 1e-5 of the image's sum.
+  EXPECT_LE(differing, pixels / 200);
   EXPECT_LT(abs_diff, 1e-5 * sum_a);
   // With Embree too, the image does not depend on the thread count.
   const Film b1 = render(*embree, settings, 2, 1);
