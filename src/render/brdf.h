@@ -14,6 +14,8 @@ inline float blinn_phong_lobe(float cos_theta_h, float exponent) {
 /// BRDF for light arriving along `wi` and leaving along `wo` (both unit, pointing away from the surface) at a point
 /// with shading normal `n`. With Ks: Kd / pi + Ks lobe. Without Ks: the report's mix Kd (K / pi + (1 - K) lobe).
 inline Vec3 eval_brdf(const Material& m, const Vec3& n, const Vec3& wi, const Vec3& wo, float blinn_k) {
+  // Pure Lambert (no Ks, K = 1): the lobe's weight is zero, so neither it nor the half vector is needed.
+  if (!m.has_specular() && blinn_k >= 1.0f) return m.kd * kInvPi;
   const Vec3 h = wi + wo;
   const float h_length = glm::length(h);
   const float cos_theta_h = h_length > 0.0f ? glm::dot(n, h) / h_length : 0.0f;
