@@ -52,10 +52,11 @@ bool project_to_pixel(const Camera& c, const Vec3& point, float& x, float& y) {
   const Vec3 d = point - c.eye;
   const float depth = glm::dot(d, c.forward);
   if (!(depth > 0.0f)) return false;
-  const float sx = glm::dot(d, c.right) / (depth * c.tan_half_fovy * c.aspect);
-  const float sy = glm::dot(d, c.up) / (depth * c.tan_half_fovy);
-  x = (sx + 1.0f) * 0.5f * static_cast<float>(c.width);
-  y = (1.0f - sy) * 0.5f * static_cast<float>(c.height);
+  // The image plane at unit depth spans tan x aspect across and tan up, that is height / (2 tan) pixels per unit
+  // both ways: one division (L2's reuse test projects every bounce hit).
+  const float pixels_per_unit = 0.5f * static_cast<float>(c.height) / (depth * c.tan_half_fovy);
+  x = 0.5f * static_cast<float>(c.width) + glm::dot(d, c.right) * pixels_per_unit;
+  y = 0.5f * static_cast<float>(c.height) - glm::dot(d, c.up) * pixels_per_unit;
   return x >= 0.0f && y >= 0.0f && x < static_cast<float>(c.width) && y < static_cast<float>(c.height);
 }
 
