@@ -67,6 +67,48 @@ TEST(Sobol, BitReversalMovesBitIToBit31MinusI) {
   }
 }
 
+// The table-free second dimension against its definition: the xor of the direction numbers of the index's set bits.
+TEST(Sobol, SecondDimensionIsTheXorOfItsDirectionNumbers) {
+  uint32_t index = 1u;
+  for (int i = 0; i < 100000; ++i) {
+    index = index * 1664525u + 1013904223u;
+    uint32_t expected = 0;
+    for (uint32_t bit = 0; bit < 32; ++bit)
+      if (index & (1u << bit)) expected ^= kSobolDimension1Directions[bit];
+    ASSERT_EQ(sobol_dimension_1(index), expected) << index;
+    ASSERT_EQ(sobol_dimension_1_reversed(index), reverse_bits(expected)) << index;
+  }
+  for (uint32_t bit = 0; bit < 32; ++bit) ASSERT_EQ(sobol_dimension_1(1u << bit), kSobolDimension1Directions[bit]);
+}
+
+// The batch draws give, sample for sample, what start_sample + get_1d / get_2d give, for both kinds and for ranges
+// that start anywhere (the L1 batches start at frame x rays).
+TEST(PixelSampler, BatchDrawsEqualTheSampleBySampleDraws) {
+  for (const SamplerKind kind : {SamplerKind::kSobol, SamplerKind::kIndependent}) {
+    for (const uint64_t first : {uint64_t{0}, uint64_t{16}, uint64_t{37}, uint64_t{4096 * 16 + 5}}) {
+      constexpr int kCount = 13;
+      float one[kCount], x[kCount], y[kCount];
+      PixelSampler batch(kind, 9, 1234, first, RngPurpose::kDirect), single(kind, 9, 1234, first, RngPurpose::kDirect);
+      batch.draw_1d_2d(first, kCount, one, x, y);
+      for (int k = 0; k < kCount; ++k) {
+        single.start_sample(first + static_cast<uint64_t>(k));
+        ASSERT_EQ(one[k], single.get_1d()) << k;
+        const Vec2 u = single.get_2d();
+        ASSERT_EQ(x[k], u.x) << k;
+        ASSERT_EQ(y[k], u.y) << k;
+      }
+      PixelSampler batch2(kind, 9, 77, first, RngPurpose::kIndirect), single2(kind, 9, 77, first, RngPurpose::kIndirect);
+      batch2.draw_2d(first, kCount, x, y);
+      for (int k = 0; k < kCount; ++k) {
+        single2.start_sample(first + static_cast<uint64_t>(k));
+        const Vec2 u = single2.get_2d();
+        ASSERT_EQ(x[k], u.x) << k;
+        ASSERT_EQ(y[k], u.y) << k;
+      }
+    }
+  }
+}
+
 TEST(Sobol, FirstTwoDimensionsAreA02Sequence) {
   for (int k = 0; k <= 12; ++k)
     for (uint32_t block = 0; block < 3; ++block) {

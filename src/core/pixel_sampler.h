@@ -52,32 +52,72 @@ class PixelSampler {
     }
     const DimensionSeeds& seeds = next_dimension_seeds();
     const uint32_t index = shuffled_index(seeds.index);
-    const uint32_t y_reversed = xor_by_bytes(kReversedDimension1Tables, index);  // reverse_bits(sobol_dimension_1)
     return Vec2(fraction_to_float(scrambled_dimension_0(index, seeds.x)),
-                fraction_to_float(reverse_bits(laine_karras_permutation(y_reversed, seeds.y))));
+                fraction_to_float(reverse_bits(laine_karras_permutation(sobol_dimension_1_reversed(index), seeds.y))));
+  }
+
+  /// For `count` samples from `first_sample` on, what each would give for get_1d then get_2d: an L1 sample's light
+  /// choice (`one`) and point on the light (`x`, `y`). The Sobol numbers of all the samples are computed together,
+  /// in SIMD lanes.
+  void draw_1d_2d(uint64_t first_sample, int count, float* one, float* x, float* y) {
+    if (kind_ == SamplerKind::kIndependent) {
+      for (int k = 0; k < count; ++k) {
+        start_sample(first_sample + static_cast<uint64_t>(k));
+        one[k] = get_1d();
+        const Vec2 u = get_2d();
+        x[k] = u.x;
+        y[k] = u.y;
+      }
+      return;
+    }
+    const DimensionSeeds first = seeds_of(0), second = seeds_of(1);
+    for (int k = 0; k < count; ++k) {
+      const uint32_t reversed = reverse_bits_by_shifts(static_cast<uint32_t>(first_sample + static_cast<uint64_t>(k)));
+      one[k] = lane_dimension_0(lane_index(reversed, first.index), first.x);
+      const uint32_t index = lane_index(reversed, second.index);
+      x[k] = lane_dimension_0(index, second.x);
+      y[k] = lane_dimension_1(index, second.y);
+    }
+  }
+
+  /// For `count` samples from `first_sample` on, what each would give for get_2d: a bounce or AO direction.
+  void draw_2d(uint64_t first_sample, int count, float* x, float* y) {
+    if (kind_ == SamplerKind::kIndependent) {
+      for (int k = 0; k < count; ++k) {
+        start_sample(first_sample + static_cast<uint64_t>(k));
+        const Vec2 u = get_2d();
+        x[k] = u.x;
+        y[k] = u.y;
+      }
+      return;
+    }
+    const DimensionSeeds seeds = seeds_of(0);
+    for (int k = 0; k < count; ++k) {
+      const uint32_t index =
+          lane_index(reverse_bits_by_shifts(static_cast<uint32_t>(first_sample + static_cast<uint64_t>(k))), seeds.index);
+      x[k] = lane_dimension_0(index, seeds.x);
+      y[k] = lane_dimension_1(index, seeds.y);
+    }
   }
 
  private:
-  /// Sobol's second dimension with its bits reversed, as tables: the scramble works on reversed bits.
-  static constexpr SobolByteTables kReversedDimension1Tables = [] {
-    std::array<uint32_t, 32> reversed{};
-    for (size_t j = 0; j < reversed.size(); ++j) reversed[j] = reverse_bits(kSobolDimension1Directions[j]);
-    return make_sobol_byte_tables(reversed);
-  }();
-
   /// The scrambling seeds of one dimension (pair): for the index shuffle and for each coordinate.
   struct DimensionSeeds {
     uint32_t index = 0, x = 0, y = 0;
   };
 
-  /// The seeds of the next dimension. They depend on the pixel, purpose and dimension only, not on the sample, so
-  /// those of the first few dimensions are kept for the pixel's next samples.
+  /// The seeds of dimension `d`: functions of the pixel, purpose and dimension only.
+  DimensionSeeds seeds_of(uint32_t d) const {
+    const uint64_t h = mix64(key_ ^ (0x9e3779b97f4a7c15ull * (d + 1)));
+    return {static_cast<uint32_t>(h), static_cast<uint32_t>(h >> 32), static_cast<uint32_t>(mix64(h))};
+  }
+
+  /// The seeds of the next dimension, those of the first few kept for the pixel's next samples.
   const DimensionSeeds& next_dimension_seeds() {
     const uint32_t d = dimension_++;
     if (d < cached_) return cache_[d];
-    const uint64_t h = mix64(key_ ^ (0x9e3779b97f4a7c15ull * (d + 1)));
     DimensionSeeds& seeds = d < kCachedDimensions ? cache_[cached_++] : uncached_;
-    seeds = {static_cast<uint32_t>(h), static_cast<uint32_t>(h >> 32), static_cast<uint32_t>(mix64(h))};
+    seeds = seeds_of(d);
     return seeds;
   }
 
@@ -89,6 +129,18 @@ class PixelSampler {
   /// scramble's own reversal cancels it.
   static uint32_t scrambled_dimension_0(uint32_t index, uint32_t seed) {
     return reverse_bits(laine_karras_permutation(index, seed));
+  }
+
+  /// The batch forms of shuffled_index and of the two coordinates (`reversed`: the sample's index, bits reversed):
+  /// the same numbers in arithmetic only (no table lookups), so that a loop over samples vectorises.
+  static uint32_t lane_index(uint32_t reversed, uint32_t seed) {
+    return reverse_bits_by_shifts(laine_karras_permutation(reversed, seed));
+  }
+  static float lane_dimension_0(uint32_t index, uint32_t seed) {
+    return fraction_to_float(reverse_bits_by_shifts(laine_karras_permutation(index, seed)));
+  }
+  static float lane_dimension_1(uint32_t index, uint32_t seed) {
+    return fraction_to_float(reverse_bits_by_shifts(laine_karras_permutation(sobol_dimension_1_reversed(index), seed)));
   }
 
   SamplerKind kind_;

@@ -19,14 +19,9 @@ inline constexpr std::array<uint8_t, 256> kReversedBytes = [] {
   return table;
 }();
 
-/// The 32 bits of x in reverse order. At run time four lookups in a 256-byte table, which the sampler's five
-/// reversals per sample find in cache: shorter than the five dependent shift-and-mask steps.
-constexpr uint32_t reverse_bits(uint32_t x) {
-  if (!std::is_constant_evaluated()) {
-    return (static_cast<uint32_t>(kReversedBytes[x & 0xffu]) << 24) |
-           (static_cast<uint32_t>(kReversedBytes[(x >> 8) & 0xffu]) << 16) |
-           (static_cast<uint32_t>(kReversedBytes[(x >> 16) & 0xffu]) << 8) | kReversedBytes[x >> 24];
-  }
+/// The 32 bits of x in reverse order by five swap steps: branch-free arithmetic that a loop over several samples
+/// runs in SIMD lanes.
+constexpr uint32_t reverse_bits_by_shifts(uint32_t x) {
   x = (x << 16) | (x >> 16);
   x = ((x & 0x00ff00ffu) << 8) | ((x & 0xff00ff00u) >> 8);
   x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);
@@ -35,41 +30,44 @@ constexpr uint32_t reverse_bits(uint32_t x) {
   return x;
 }
 
+/// The 32 bits of x in reverse order. At run time four lookups in a 256-byte table, which the sampler's five
+/// reversals per sample find in cache: shorter than the five dependent steps one sample at a time.
+constexpr uint32_t reverse_bits(uint32_t x) {
+  if (std::is_constant_evaluated()) return reverse_bits_by_shifts(x);
+  return (static_cast<uint32_t>(kReversedBytes[x & 0xffu]) << 24) |
+         (static_cast<uint32_t>(kReversedBytes[(x >> 8) & 0xffu]) << 16) |
+         (static_cast<uint32_t>(kReversedBytes[(x >> 16) & 0xffu]) << 8) | kReversedBytes[x >> 24];
+}
+
 /// Sobol's first dimension for `index`, as a 32-bit fraction: the van der Corput sequence (the bits reversed).
 inline uint32_t sobol_dimension_0(uint32_t index) { return reverse_bits(index); }
 
-/// Xor tables of direction numbers, one per byte of the index: `tables[b][value]` is the xor of the direction
-/// numbers of the set bits of `value << 8b`.
-using SobolByteTables = std::array<std::array<uint32_t, 256>, 4>;
-
-constexpr SobolByteTables make_sobol_byte_tables(const std::array<uint32_t, 32>& directions) {
-  SobolByteTables tables{};
-  for (size_t byte = 0; byte < 4; ++byte)
-    for (uint32_t value = 0; value < 256; ++value)
-      for (size_t bit = 0; bit < 8; ++bit)
-        if (value & (1u << bit)) tables[byte][value] ^= directions[8 * byte + bit];
-  return tables;
-}
-
 /// Sobol's second dimension (primitive polynomial x + 1): the direction numbers are the rows of Pascal's triangle
-/// mod 2, v_0 = 2^31 and v_j = v_(j-1) xor (v_(j-1) >> 1).
+/// mod 2, v_0 = 2^31 and v_j = v_(j-1) xor (v_(j-1) >> 1). The reference definition; the sampler uses
+/// `sobol_dimension_1_reversed`.
 inline constexpr std::array<uint32_t, 32> kSobolDimension1Directions = [] {
   std::array<uint32_t, 32> v{};
   v[0] = 0x80000000u;
   for (size_t j = 1; j < v.size(); ++j) v[j] = v[j - 1] ^ (v[j - 1] >> 1);
   return v;
 }();
-inline constexpr SobolByteTables kSobolDimension1Tables = make_sobol_byte_tables(kSobolDimension1Directions);
 
-/// Xors the table entries of the four bytes of `index`: four lookups, where a loop over the bits would pay a
-/// mispredicted branch for every other bit of a scrambled index.
-inline uint32_t xor_by_bytes(const SobolByteTables& tables, uint32_t index) {
-  return tables[0][index & 0xffu] ^ tables[1][(index >> 8) & 0xffu] ^ tables[2][(index >> 16) & 0xffu] ^
-         tables[3][index >> 24];
+/// Sobol's second dimension with its bits reversed (bit k is the fraction's bit 31 - k), without tables. By
+/// Lucas's theorem, bit 31 - k of v_j is C(j, k) mod 2 = [the bits of k are among those of j], so bit k of the
+/// result is the parity of the index's set bits j whose positions contain k: a sum over supersets, which five
+/// shift-and-xor steps (one per bit of the 5-bit position) compute for all 32 positions at once.
+constexpr uint32_t sobol_dimension_1_reversed(uint32_t index) {
+  uint32_t g = index;
+  g ^= (g >> 1) & 0x55555555u;
+  g ^= (g >> 2) & 0x33333333u;
+  g ^= (g >> 4) & 0x0f0f0f0fu;
+  g ^= (g >> 8) & 0x00ff00ffu;
+  g ^= (g >> 16) & 0x0000ffffu;
+  return g;
 }
 
-/// Sobol's second dimension for `index`, as a 32-bit fraction: the xor of the direction numbers of its set bits.
-inline uint32_t sobol_dimension_1(uint32_t index) { return xor_by_bytes(kSobolDimension1Tables, index); }
+/// Sobol's second dimension for `index`, as a 32-bit fraction.
+inline uint32_t sobol_dimension_1(uint32_t index) { return reverse_bits(sobol_dimension_1_reversed(index)); }
 
 /// The hash at the heart of a nested uniform scramble, on reversed bits: each bit is flipped by a function of the
 /// bits below it, which additions and multiplications by even constants respect (Laine and Karras 2011, with

@@ -2,11 +2,17 @@
 // Le f cos_p cos_l / d^2 by 1 / (pmf / area) if the shadow ray reaches it.
 #include "render/direct_light.h"
 
+#include <algorithm>
+#include <array>
+
 #include "core/sampling.h"
 #include "render/brdf.h"
 
 namespace lueur {
 namespace {
+
+/// Samples whose random numbers are drawn at once.
+constexpr int kSampleBatch = 16;
 
 /// Light arriving at the surface from one uniform point on emitter `table_index`: Le cos_p cos_l area / d^2
 /// (divided by the area pdf, not by the pmf), zero when the point is hidden or faces away. `wi` receives the
@@ -57,19 +63,28 @@ Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, co
     sum += arriving * f;
     diffuse_sum += arriving * f_diffuse;
   };
-  for (int s = 0; s < options.rays; ++s) {
-    sampler.start_sample(first_sample + static_cast<uint64_t>(s));
-    Vec3 wi(0.0f);
-    if (options.strategy == LightStrategy::kAll) {
+  Vec3 wi(0.0f);
+  if (options.strategy == LightStrategy::kAll) {
+    for (int s = 0; s < options.rays; ++s) {
+      sampler.start_sample(first_sample + static_cast<uint64_t>(s));
       for (uint32_t i = 0; i < table.size(); ++i) {
         const Vec2 u = sampler.get_2d();
         accumulate(sample_emitter(traced, sp, i, u.x, u.y, wi, rays_traced), wi);
       }
-    } else {
-      const LightChoice choice = choose_light(table, options.strategy, sampler.get_1d());
-      const Vec2 u = sampler.get_2d();
-      if (choice.pmf > 0.0f)
-        accumulate(sample_emitter(traced, sp, choice.index, u.x, u.y, wi, rays_traced) / choice.pmf, wi);
+    }
+  } else {
+    // The numbers of a batch of samples first (computed together), then the samples one by one.
+    std::array<float, kSampleBatch> choice_u, point_x, point_y;
+    for (int batch = 0; batch < options.rays; batch += kSampleBatch) {
+      const int count = std::min(kSampleBatch, options.rays - batch);
+      sampler.draw_1d_2d(first_sample + static_cast<uint64_t>(batch), count, choice_u.data(), point_x.data(),
+                         point_y.data());
+      for (size_t k = 0; k < static_cast<size_t>(count); ++k) {
+        const LightChoice choice = choose_light(table, options.strategy, choice_u[k]);
+        if (choice.pmf > 0.0f)
+          accumulate(sample_emitter(traced, sp, choice.index, point_x[k], point_y[k], wi, rays_traced) / choice.pmf,
+                     wi);
+      }
     }
   }
   const float inv = 1.0f / static_cast<float>(options.rays);

@@ -24,7 +24,7 @@ struct PendingBounce {
   int pixel = -1;  ///< the screen pixel q projects to, or -1 (or no reuse)
 };
 
-/// Bounce rays traced ahead of their L1(q) lookups.
+/// Bounce rays traced ahead of their L1(q) lookups (and AO rays whose numbers are drawn at once).
 constexpr int kBounceBatch = 16;
 
 }  // namespace
@@ -63,9 +63,8 @@ namespace {
 
 /// A direction on the cosine-weighted hemisphere around the shading normal (`shading_frame`'s z), or false when it dips below the
 /// geometric surface (such rays would leak through it and count as zero).
-bool sample_bounce_ray(const SurfacePoint& sp, const Frame& shading_frame, PixelSampler& sampler, Ray& ray) {
-  const Vec2 u = sampler.get_2d();
-  const Vec3 local = sample_cosine_hemisphere(u.x, u.y);
+bool sample_bounce_ray(const SurfacePoint& sp, const Frame& shading_frame, float u1, float u2, Ray& ray) {
+  const Vec3 local = sample_cosine_hemisphere(u1, u2);
   const Vec3 wi = shading_frame.to_world(local);
   if (!(local.z > 0.0f && glm::dot(wi, sp.geometric_normal) > 0.0f)) return false;
   ray.origin = offset_origin(sp.position, sp.geometric_normal, wi);
@@ -105,11 +104,13 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
     // their cache misses, which otherwise cost more than the traversal itself.
     std::array<PendingBounce, kBounceBatch> pending;
     int pending_count = 0;
-    for (int s = batch_start; s < std::min(batch_start + kBounceBatch, settings.l2_rays); ++s) {
+    const int count = std::min(kBounceBatch, settings.l2_rays - batch_start);
+    std::array<float, kBounceBatch> u1, u2;
+    bounce_sampler.draw_2d(first_sample + static_cast<uint64_t>(batch_start), count, u1.data(), u2.data());
+    for (size_t k = 0; k < static_cast<size_t>(count); ++k) {
       PendingBounce& b = pending[static_cast<size_t>(pending_count)];
-      b.sample = first_sample + static_cast<uint64_t>(s);
-      bounce_sampler.start_sample(b.sample);
-      if (!sample_bounce_ray(sp, shading_frame, bounce_sampler, b.ray)) continue;
+      b.sample = first_sample + static_cast<uint64_t>(batch_start) + k;
+      if (!sample_bounce_ray(sp, shading_frame, u1[k], u2[k], b.ray)) continue;
       ++rays_traced;
       ++result.bounce_rays;
       b.hit = intersect_closest(traced.accel, b.ray);
@@ -175,13 +176,17 @@ Vec3 estimate_ambient_occlusion(const TracedScene& traced, const SurfacePoint& s
   if (rays <= 0) return Vec3(0.0f);
   int open = 0;
   const Frame shading_frame = Frame::from_normal(sp.shading_normal);
-  for (int s = 0; s < rays; ++s) {
-    sampler.start_sample(first_sample + static_cast<uint64_t>(s));
-    Ray ray;
-    if (!sample_bounce_ray(sp, shading_frame, sampler, ray)) continue;
-    ray.tmax = radius;
-    ++rays_traced;
-    if (!intersect_any(traced.accel, ray)) ++open;
+  std::array<float, kBounceBatch> u1, u2;
+  for (int batch = 0; batch < rays; batch += kBounceBatch) {
+    const int count = std::min(kBounceBatch, rays - batch);
+    sampler.draw_2d(first_sample + static_cast<uint64_t>(batch), count, u1.data(), u2.data());
+    for (size_t k = 0; k < static_cast<size_t>(count); ++k) {
+      Ray ray;
+      if (!sample_bounce_ray(sp, shading_frame, u1[k], u2[k], ray)) continue;
+      ray.tmax = radius;
+      ++rays_traced;
+      if (!intersect_any(traced.accel, ray)) ++open;
+    }
   }
   return traced.scene.material_of(sp.triangle).kd * (static_cast<float>(open) / static_cast<float>(rays));
 }
