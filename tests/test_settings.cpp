@@ -22,6 +22,7 @@ Settings unusual_settings() {
   s.render.height = 18;
   s.render.enabled = {true, true, false, true};
   s.render.lights = LightStrategy::kPower;
+  s.render.le_rays = 2;
   s.render.l1_rays = 3;
   s.render.blinn_k = 0.55f;
   s.render.l2_rays = 5;

@@ -44,7 +44,14 @@ class Pcg32 {
 };
 
 /// What a stream is used for: separate streams keep passes independent of each other's sample counts.
-enum class RngPurpose : uint64_t { kCamera = 1, kDirect = 2, kIndirect = 3, kOcclusion = 4, kRecompute = 5 };
+enum class RngPurpose : uint64_t {
+  kCamera = 1,
+  kDirect = 2,
+  kIndirect = 3,
+  kOcclusion = 4,
+  kRecompute = 5,
+  kEmission = 6,  ///< the camera rays that only see Le (RenderSettings::le_rays beyond the first)
+};
 
 /// The stream of one pixel in one frame for one purpose.
 inline Pcg32 make_pixel_rng(uint64_t seed, uint64_t pixel, uint64_t frame, RngPurpose purpose) {

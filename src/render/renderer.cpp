@@ -4,6 +4,8 @@
 // and every pixel's sums see the same sequence of additions whatever the thread count.
 #include "render/renderer.h"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 
@@ -28,6 +30,32 @@ void set_layer(FrameBuffers& frame, Layer layer, size_t pixel, const Vec3& value
   if (!values.empty()) values[pixel] = value;
 }
 
+/// Le by the `settings.le_rays - 1` camera rays beyond the pixel's first (which also carries L1, L2 and AO): the
+/// sum of the emission they see. Emission is cheap to see and its edges are the sharpest in the image, so they get
+/// more camera rays per frame than the shading does.
+Vec3 emission_of_extra_rays(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, int x,
+                            int y, uint64_t pixel, uint64_t frame, uint64_t& rays, uint64_t& primary_rays) {
+  const int extra = settings.le_rays - 1;
+  Vec3 sum(0.0f);
+  if (extra <= 0) return sum;
+  PixelSampler sampler(settings.sampler, settings.seed, pixel, frame, RngPurpose::kEmission);
+  std::array<float, 16> u1, u2;
+  for (int batch = 0; batch < extra; batch += 16) {
+    const int count = std::min(16, extra - batch);
+    sampler.draw_2d(frame * static_cast<uint64_t>(extra) + static_cast<uint64_t>(batch), count, u1.data(), u2.data());
+    for (size_t k = 0; k < static_cast<size_t>(count); ++k) {
+      const Ray ray = camera_ray(camera, static_cast<float>(x) + u1[k], static_cast<float>(y) + u2[k]);
+      ++rays;
+      ++primary_rays;
+      const Hit hit = intersect_closest(traced.accel, ray);
+      // Emitters shine on the side of their geometric normal only (SurfacePoint::front_face).
+      if (hit.found() && glm::dot(traced.scene.geometric_normal_raw(hit.triangle), ray.dir) < 0.0f)
+        sum += traced.scene.material_of(hit.triangle).ke;
+    }
+  }
+  return sum;
+}
+
 /// Phase 1 for one pixel.
 void trace_primary(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, const Film& film,
                    int x, int y, uint64_t frame, FrameBuffers& out, uint64_t& rays, uint64_t& primary_rays) {
@@ -40,14 +68,21 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
   ++rays;
   ++primary_rays;
   const Hit hit = intersect_closest(traced.accel, ray);
-  if (!hit.found()) return;
+  const bool le = settings.pass_enabled(Pass::kLe);
+  const Vec3 extra_emission =
+      le ? emission_of_extra_rays(traced, camera, settings, x, y, pixel, frame, rays, primary_rays) : Vec3(0.0f);
+  const float le_rays = static_cast<float>(std::max(settings.le_rays, 1));
+  if (!hit.found()) {
+    if (le) set_layer(out, Layer::kLe, i, extra_emission / le_rays);
+    return;
+  }
 
   const SurfacePoint sp = make_surface_point(traced.scene, ray, hit);
   out.hits[i] = sp;
   out.screen.triangle[i] = hit.triangle;
   out.screen.pixels[i].position = sp.position;
   const Material& material = traced.scene.material_of(hit.triangle);
-  if (sp.front_face) set_layer(out, Layer::kLe, i, material.ke);
+  if (le) set_layer(out, Layer::kLe, i, ((sp.front_face ? material.ke : Vec3(0.0f)) + extra_emission) / le_rays);
 
   const bool l2 = settings.pass_enabled(Pass::kL2);
   const bool screen_needs_l1 = l2 && settings.reuse != ReuseMode::kOff;

@@ -29,6 +29,11 @@ std::vector<Row> make_rows() {
       "lights", "how L1 picks the emitter of each shadow ray", E::kRestart, kLightStrategyNames,
       [](auto& s) -> auto& { return s.render.lights; }));
   table.push_back(integer_row(
+      "le-rays",
+      "camera rays per pixel per frame that see Le (emission): the first also carries L1, L2 and AO; the others "
+      "only anti-alias the emitters' edges",
+      E::kRestart, [](auto& s) -> auto& { return s.render.le_rays; }, SettingRange{1, 4096}, SettingRange{1, 64}));
+  table.push_back(integer_row(
       "l1-rays", "L1 shadow rays per pixel per frame", E::kRestart, [](auto& s) -> auto& { return s.render.l1_rays; },
       rays, ray_slider));
   table.push_back(integer_row(
