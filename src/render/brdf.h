@@ -8,7 +8,9 @@ namespace lueur {
 /// Normalised Blinn-Phong lobe (n + 8) / (8 pi) cos^n(theta_h).
 inline float blinn_phong_lobe(float cos_theta_h, float exponent) {
   if (cos_theta_h <= 0.0f) return 0.0f;
-  return (exponent + 8.0f) * (1.0f / (8.0f * kPi)) * std::pow(cos_theta_h, exponent);
+  // Exponent 0 (an MTL without Ns, as most are) makes the lobe a constant: no call into libm's pow.
+  const float power = exponent == 0.0f ? 1.0f : std::pow(cos_theta_h, exponent);
+  return (exponent + 8.0f) * (1.0f / (8.0f * kPi)) * power;
 }
 
 /// BRDF for light arriving along `wi` and leaving along `wo` (both unit, pointing away from the surface) at a point
