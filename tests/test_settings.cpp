@@ -1,9 +1,10 @@
 // The settings table: every setting reads back what it writes, as command-line text and in view files; both accept
 // exactly the same values; the settings written into images render the same image again; a change has the effect
-// the table says; view files written before the table existed still load and render as before.
+// the table says; view files written before the table existed still load and render as before; the README names every setting.
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "settings/setting_table.h"
@@ -259,6 +260,22 @@ TEST(SettingTable, ViewFilesFromBeforeTheTableStillLoad) {
       dir + "/b.png");
   ASSERT_EQ(from_options.exit_code, 0) << from_options.output;
   EXPECT_EQ(test::read_file(dir + "/a.png"), test::read_file(dir + "/b.png"));
+}
+
+// The README's command line is the user's list of options: every setting of the table must be in it (a setting
+// added without its documentation, or a README lost to a bad edit, fails here).
+TEST(SettingTable, TheReadmesCommandLineNamesEverySetting) {
+  std::ifstream file(std::string(LUEUR_SOURCE_DIR) + "/README.md");
+  ASSERT_TRUE(file) << "no README.md in " << LUEUR_SOURCE_DIR;
+  const std::string readme((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const size_t block = readme.find("## Command line");
+  ASSERT_NE(block, std::string::npos) << "the README has no command-line section";
+  const std::string section = readme.substr(block, readme.find("\n## ", block + 1) - block);
+  for (const SettingInfo& info : setting_infos()) {
+    const bool named = section.find("[" + info.option() + " ") != std::string::npos ||
+                       section.find("[" + info.option() + "]") != std::string::npos;
+    EXPECT_TRUE(named) << info.option() << " is not in the README's command line";
+  }
 }
 
 }  // namespace
