@@ -1,6 +1,7 @@
 // The settings table: every setting reads back what it writes, as command-line text and in view files; both accept
 // exactly the same values; the settings written into images render the same image again; a change has the effect
-// the table says; view files written before the table existed still load and render as before; the README names every setting.
+// the table says; view files written before the table existed still load and render as before; the README names
+// every setting.
 #include <gtest/gtest.h>
 
 #include <fstream>
