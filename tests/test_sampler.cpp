@@ -97,7 +97,8 @@ TEST(PixelSampler, BatchDrawsEqualTheSampleBySampleDraws) {
         ASSERT_EQ(x[k], u.x) << k;
         ASSERT_EQ(y[k], u.y) << k;
       }
-      PixelSampler batch2(kind, 9, 77, first, RngPurpose::kIndirect), single2(kind, 9, 77, first, RngPurpose::kIndirect);
+      PixelSampler batch2(kind, 9, 77, first, RngPurpose::kIndirect),
+          single2(kind, 9, 77, first, RngPurpose::kIndirect);
       batch2.draw_2d(first, kCount, x, y);
       for (int k = 0; k < kCount; ++k) {
         single2.start_sample(first + static_cast<uint64_t>(k));

@@ -1,15 +1,15 @@
 // Sampling warps and light selection against their probability mass/density functions (chi-square), and the
 // report's Algorithm 1 against the cumulative table.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "render/light_sampler.h"
 #include "scene/default_scene.h"
 #include "test_support.h"
-
-#include <gtest/gtest.h>
-
-#include <map>
-#include <random>
 
 namespace lueur {
 namespace {
@@ -64,8 +64,10 @@ TEST(Sampling, UniformTriangleMatchesItsPdf) {
     for (int cx = 0; cx < kGrid; ++cx) {
       const int count = counts[static_cast<size_t>(cy * kGrid + cx)];
       double area = 0.0;
-      if (cx + cy < kGrid - 1) area = 1.0 / (kGrid * kGrid);
-      else if (cx + cy == kGrid - 1) area = 0.5 / (kGrid * kGrid);
+      if (cx + cy < kGrid - 1)
+        area = 1.0 / (kGrid * kGrid);
+      else if (cx + cy == kGrid - 1)
+        area = 0.5 / (kGrid * kGrid);
       if (area == 0.0) {
         EXPECT_EQ(count, 0) << "sample outside the triangle in cell " << cx << "," << cy;
         continue;

@@ -35,7 +35,7 @@ struct BenchOptions {
   int rounds = 0;    ///< when set: alternating timing rounds
   std::string scenes_dir = LUEUR_SHARED_SCENES;
   std::set<std::string> sections = {"build", "throughput", "convergence"};
-  int ray_size = 512;  ///< rays are generated for a ray_size x ray_size view
+  int ray_size = 512;          ///< rays are generated for a ray_size x ray_size view
   double frame_seconds = 3.0;  ///< the renderer's frames per scene and thread count, at least (section frame)
   TimingOptions timing;
   ConvergenceOptions convergence;
@@ -224,8 +224,8 @@ int run(const BenchOptions& o) {
       for (ThreadPool* pool : pools) {
         const int threads = pool->thread_count();
         const FrameFigures f = measure_frames(b, o.ray_size, *pool, o.frame_seconds);
-        const double mix = ray_mix_mrays(f, mrays[{"primary", threads}], mrays[{"bounce", threads}],
-                                         mrays[{"shadow", threads}]);
+        const double mix =
+            ray_mix_mrays(f, mrays[{"primary", threads}], mrays[{"bounce", threads}], mrays[{"shadow", threads}]);
         const double ratio = mix > 0.0 ? f.renderer_mrays / mix : 0.0;
         frames.push_back(Json{{"scene", b.name},
                               {"threads", threads},

@@ -93,8 +93,8 @@ class PixelSampler {
     }
     const DimensionSeeds seeds = seeds_of(0);
     for (int k = 0; k < count; ++k) {
-      const uint32_t index =
-          lane_index(reverse_bits_by_shifts(static_cast<uint32_t>(first_sample + static_cast<uint64_t>(k))), seeds.index);
+      const uint32_t index = lane_index(
+          reverse_bits_by_shifts(static_cast<uint32_t>(first_sample + static_cast<uint64_t>(k))), seeds.index);
       x[k] = lane_dimension_0(index, seeds.x);
       y[k] = lane_dimension_1(index, seeds.y);
     }

@@ -23,9 +23,11 @@ inline Vec2 cos_sin_2pi(float u) {
   const float nearest = std::nearbyint(quarters);
   const float a = (quarters - nearest) * (kPi / 2.0f);
   const float a2 = a * a;
-  const float s = a * (1.0f + a2 * (-1.0f / 6.0f + a2 * (1.0f / 120.0f + a2 * (-1.0f / 5040.0f + a2 * (1.0f / 362880.0f)))));
-  const float c = 1.0f + a2 * (-0.5f + a2 * (1.0f / 24.0f + a2 * (-1.0f / 720.0f + a2 * (1.0f / 40320.0f +
-                                                                                        a2 * (-1.0f / 3628800.0f)))));
+  const float s =
+      a * (1.0f + a2 * (-1.0f / 6.0f + a2 * (1.0f / 120.0f + a2 * (-1.0f / 5040.0f + a2 * (1.0f / 362880.0f)))));
+  const float c =
+      1.0f +
+      a2 * (-0.5f + a2 * (1.0f / 24.0f + a2 * (-1.0f / 720.0f + a2 * (1.0f / 40320.0f + a2 * (-1.0f / 3628800.0f)))));
   const auto quadrant = static_cast<uint32_t>(static_cast<int>(nearest));
   const bool odd = (quadrant & 1u) != 0;
   const float x = odd ? s : c, y = odd ? c : s;

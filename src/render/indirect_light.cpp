@@ -61,8 +61,8 @@ int find_reusable_pixel(const Camera& camera, const ScreenBuffer& screen, uint32
 
 namespace {
 
-/// A direction on the cosine-weighted hemisphere around the shading normal (`shading_frame`'s z), or false when it dips below the
-/// geometric surface (such rays would leak through it and count as zero).
+/// A direction on the cosine-weighted hemisphere around the shading normal (`shading_frame`'s z), or false when it dips
+/// below the geometric surface (such rays would leak through it and count as zero).
 bool sample_bounce_ray(const SurfacePoint& sp, const Frame& shading_frame, float u1, float u2, Ray& ray) {
   const Vec3 local = sample_cosine_hemisphere(u1, u2);
   const Vec3 wi = shading_frame.to_world(local);
@@ -144,8 +144,8 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
             if (mq.has_specular() || settings.blinn_k < 1.0f) {
               DirectLightOptions rest = recompute;
               rest.specular_only = true;
-              l1_q += estimate_direct_light(traced, make_surface_point(scene, b.ray, b.hit), rest,
-                                            recompute_sampler, first_shadow_sample, rays_traced);
+              l1_q += estimate_direct_light(traced, make_surface_point(scene, b.ray, b.hit), rest, recompute_sampler,
+                                            first_shadow_sample, rays_traced);
             }
           }
         }

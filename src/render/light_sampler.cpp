@@ -106,10 +106,13 @@ LightChoice choose_light(const LightTable& table, LightStrategy strategy, float 
 
 float light_pmf(const LightTable& table, LightStrategy strategy, uint32_t index) {
   switch (strategy) {
-    case LightStrategy::kArea: return table.by_area.pmf[index];
-    case LightStrategy::kPower: return table.by_power.pmf[index];
+    case LightStrategy::kArea:
+      return table.by_area.pmf[index];
+    case LightStrategy::kPower:
+      return table.by_power.pmf[index];
     case LightStrategy::kUniform:
-    case LightStrategy::kAll: break;
+    case LightStrategy::kAll:
+      break;
   }
   return 1.0f / static_cast<float>(table.size());
 }

@@ -2,10 +2,10 @@
 // The table is sorted by decreasing area, as in the report's Algorithm 1. Depends on the scene layer.
 #pragma once
 
+#include <vector>
+
 #include "render/settings.h"
 #include "scene/scene.h"
-
-#include <vector>
 
 namespace lueur {
 
@@ -21,8 +21,8 @@ struct EmitterRecord {
 /// A discrete CDF with its inverse made O(1): `guide[j]` is the answer for the smallest u of bucket j (u in
 /// [j, j + 1) / guide.size(), a power of two so that u x size is exact), and a short walk finds the exact one.
 struct LightCdf {
-  std::vector<double> cdf;   ///< running sum: cdf.back() is the total
-  std::vector<float> pmf;    ///< (cdf[i] - cdf[i - 1]) / total
+  std::vector<double> cdf;  ///< running sum: cdf.back() is the total
+  std::vector<float> pmf;   ///< (cdf[i] - cdf[i - 1]) / total
   std::vector<uint32_t> guide;
 };
 

@@ -2,27 +2,27 @@
 // so the result is the same bytes for any thread count. Depends on the render layer below it.
 #pragma once
 
+#include <atomic>
+#include <cstdint>
+
 #include "render/camera.h"
 #include "render/film.h"
 #include "render/settings.h"
 #include "render/thread_pool.h"
 #include "render/traced_scene.h"
 
-#include <atomic>
-#include <cstdint>
-
 namespace lueur {
 
 inline constexpr int kTileSize = 16;
 
 struct FrameResult {
-  uint64_t rays = 0;      ///< primary + shadow + bounce rays traced in this frame
-  uint64_t primary_rays = 0;    ///< of those, camera rays (closest hit)
-  uint64_t bounce_rays = 0;     ///< L2 bounce rays (closest hit); the rest are any-hit (shadow and AO) rays
-  uint64_t l2_bounce_hits = 0;  ///< L2 bounce rays that hit a surface
-  uint64_t l2_reused = 0;       ///< of those, how many reused L1 from the screen
-  double l2_seconds = 0.0;      ///< wall time of the L2 phase
-  bool completed = true;  ///< false when `cancel` stopped it early (the film is then left untouched)
+  uint64_t rays = 0;             ///< primary + shadow + bounce rays traced in this frame
+  uint64_t primary_rays = 0;     ///< of those, camera rays (closest hit)
+  uint64_t bounce_rays = 0;      ///< L2 bounce rays (closest hit); the rest are any-hit (shadow and AO) rays
+  uint64_t l2_bounce_hits = 0;   ///< L2 bounce rays that hit a surface
+  uint64_t l2_reused = 0;        ///< of those, how many reused L1 from the screen
+  double l2_seconds = 0.0;       ///< wall time of the L2 phase
+  bool completed = true;         ///< false when `cancel` stopped it early (the film is then left untouched)
   uint64_t dropped_samples = 0;  ///< pixel values not added to the film: not finite, or the sum would overflow
 };
 
