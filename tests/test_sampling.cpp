@@ -169,11 +169,11 @@ TEST(LightTable, SortedByDecreasingAreaWithConsistentPmfs) {
   const Scene scene = make_mixed_lights_scene();
   const LightTable table = build_light_table(scene);
   ASSERT_EQ(table.size(), scene.emitters.size());
-  for (size_t i = 1; i < table.size(); ++i) EXPECT_GE(table.areas[i - 1], table.areas[i]);
+  for (size_t i = 1; i < table.size(); ++i) EXPECT_GE(table.records[i - 1].area, table.records[i].area);
   // Area pmf is proportional to area; power pmf to area x luminance(Ke).
   const double total_area = table.by_area.cdf.back();
   for (uint32_t i = 0; i < table.size(); ++i) {
-    EXPECT_NEAR(light_pmf(table, LightStrategy::kArea, i), table.areas[i] / total_area, 1e-6);
+    EXPECT_NEAR(light_pmf(table, LightStrategy::kArea, i), table.records[i].area / total_area, 1e-6);
     EXPECT_NEAR(light_pmf(table, LightStrategy::kUniform, i), 1.0 / static_cast<double>(table.size()), 1e-9);
   }
   // The big ceiling triangles come first and are far more likely by area than uniformly.
@@ -209,7 +209,6 @@ TEST(LightTable, TheSearchAgreesWithTheLinearScanOnEveryTableSize) {
       const double area = random() % 4 == 0 && i > 0 ? 0.0 : 0.5 + static_cast<double>(random() % 100);
       sum += area;
       table.triangles.push_back(static_cast<uint32_t>(i));
-      table.areas.push_back(static_cast<float>(area));
       table.by_area.cdf.push_back(sum);
     }
     table.by_power = table.by_area;

@@ -18,6 +18,10 @@
 namespace lueur {
 
 enum class SamplerKind : int { kIndependent = 0, kSobol = 1 };
+
+/// How many samples the estimators draw at once with PixelSampler's batch draws (any count works; this one keeps
+/// their arrays on the stack and their loops a whole number of SIMD lanes).
+inline constexpr int kSampleBatch = 16;
 inline constexpr std::array<std::string_view, 2> kSamplerKindNames = {"independent", "sobol"};
 
 class PixelSampler {

@@ -11,9 +11,6 @@
 namespace lueur {
 namespace {
 
-/// Samples whose random numbers are drawn at once.
-constexpr int kSampleBatch = 16;
-
 /// Light arriving at the surface from one uniform point on emitter `table_index`: Le cos_p cos_l area / d^2
 /// (divided by the area pdf, not by the pmf), zero when the point is hidden or faces away. `wi` receives the
 /// direction to the point.

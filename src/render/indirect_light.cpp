@@ -24,11 +24,7 @@ struct PendingBounce {
   int pixel = -1;  ///< the screen pixel q projects to, or -1 (or no reuse)
 };
 
-/// Bounce rays traced ahead of their L1(q) lookups (and AO rays whose numbers are drawn at once).
-constexpr int kBounceBatch = 16;
-
-}  // namespace
-
+/// The screen pixel that q projects to, or -1 outside the image.
 int screen_pixel_of(const Camera& camera, const ScreenBuffer& screen, const Vec3& q) {
   float x = 0.0f, y = 0.0f;
   if (!project_to_pixel(camera, q, x, y)) return -1;
@@ -36,6 +32,8 @@ int screen_pixel_of(const Camera& camera, const ScreenBuffer& screen, const Vec3
   return py * screen.width + px;
 }
 
+/// Whether `pixel`'s primary ray hit q: the same triangle, within kReuseFootprints of q on its plane. `q_normal`
+/// may have any length: it is normalised only once the triangle matches.
 bool pixel_saw_q(const Camera& camera, const ScreenBuffer& screen, int pixel, uint32_t triangle, const Vec3& q,
                  const Vec3& q_normal) {
   const auto i = static_cast<size_t>(pixel);
@@ -47,11 +45,13 @@ bool pixel_saw_q(const Camera& camera, const ScreenBuffer& screen, int pixel, ui
   const float distance2 = glm::dot(to_q, to_q);
   const float depth = glm::dot(to_q, camera.forward);
   const float tolerance = kReuseFootprints * 2.0f * camera.tan_half_fovy * depth / static_cast<float>(camera.height);
-  const float along = glm::dot(to_q, q_normal);
+  const float along = glm::dot(to_q, glm::normalize(q_normal));
   const float obliquity2_distance2 = std::max(along * along, 0.05f * 0.05f * distance2);
   const Vec3 gap = screen.pixels[i].position - q;
   return glm::dot(gap, gap) * obliquity2_distance2 <= tolerance * tolerance * distance2;
 }
+
+}  // namespace
 
 int find_reusable_pixel(const Camera& camera, const ScreenBuffer& screen, uint32_t triangle, const Vec3& q,
                         const Vec3& q_normal) {
@@ -99,13 +99,13 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
 
   const Frame shading_frame = Frame::from_normal(sp.shading_normal);
   const bool reuse = settings.reuse != ReuseMode::kOff;
-  for (int batch_start = 0; batch_start < settings.l2_rays; batch_start += kBounceBatch) {
-    // Trace the batch first, starting the screen reads as each ray lands: the next ray's traversal then hides
-    // their cache misses, which otherwise cost more than the traversal itself.
-    std::array<PendingBounce, kBounceBatch> pending;
+  for (int batch_start = 0; batch_start < settings.l2_rays; batch_start += kSampleBatch) {
+    // Trace a batch of bounce rays first, starting the screen reads as each ray lands: the next ray's traversal then
+    // hides their cache misses, which otherwise cost more than the traversal itself.
+    std::array<PendingBounce, kSampleBatch> pending;
     int pending_count = 0;
-    const int count = std::min(kBounceBatch, settings.l2_rays - batch_start);
-    std::array<float, kBounceBatch> u1, u2;
+    const int count = std::min(kSampleBatch, settings.l2_rays - batch_start);
+    std::array<float, kSampleBatch> u1, u2;
     bounce_sampler.draw_2d(first_sample + static_cast<uint64_t>(batch_start), count, u1.data(), u2.data());
     for (size_t k = 0; k < static_cast<size_t>(count); ++k) {
       PendingBounce& b = pending[static_cast<size_t>(pending_count)];
@@ -133,8 +133,8 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
       Vec3 l1_q(0.0f);
       bool reused = false;
       if (b.pixel >= 0) {
-        const Vec3 q_normal = glm::normalize(scene.geometric_normal_raw(b.hit.triangle));
-        if (pixel_saw_q(camera, screen, b.pixel, b.hit.triangle, b.q_position, q_normal)) {
+        if (pixel_saw_q(camera, screen, b.pixel, b.hit.triangle, b.q_position,
+                        scene.geometric_normal_raw(b.hit.triangle))) {
           reused = true;
           const auto i = static_cast<size_t>(b.pixel);
           l1_q = settings.reuse == ReuseMode::kAverage ? screen.l1_average[i] : screen.pixels[i].l1;
@@ -176,9 +176,9 @@ Vec3 estimate_ambient_occlusion(const TracedScene& traced, const SurfacePoint& s
   if (rays <= 0) return Vec3(0.0f);
   int open = 0;
   const Frame shading_frame = Frame::from_normal(sp.shading_normal);
-  std::array<float, kBounceBatch> u1, u2;
-  for (int batch = 0; batch < rays; batch += kBounceBatch) {
-    const int count = std::min(kBounceBatch, rays - batch);
+  std::array<float, kSampleBatch> u1, u2;
+  for (int batch = 0; batch < rays; batch += kSampleBatch) {
+    const int count = std::min(kSampleBatch, rays - batch);
     sampler.draw_2d(first_sample + static_cast<uint64_t>(batch), count, u1.data(), u2.data());
     for (size_t k = 0; k < static_cast<size_t>(count); ++k) {
       Ray ray;

@@ -37,7 +37,7 @@ struct IndirectResult {
 };
 
 /// The screen pixel whose primary ray hit q, or -1: q projects into it, its primary ray hit q's triangle, and its
-/// hit lies within 1.5 pixel footprints of q, measured on the triangle's plane (`q_normal` is its unit normal).
+/// hit lies within 1.5 pixel footprints of q, measured on the triangle's plane (`q_normal`: its normal, of any length).
 int find_reusable_pixel(const Camera& camera, const ScreenBuffer& screen, uint32_t triangle, const Vec3& q,
                         const Vec3& q_normal);
 

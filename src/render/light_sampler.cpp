@@ -61,7 +61,6 @@ LightTable build_light_table(const Scene& scene) {
     const uint32_t tri = scene.emitters[i];
     const Triangle& t = scene.triangles[tri];
     table.triangles.push_back(tri);
-    table.areas.push_back(areas[i]);
     EmitterRecord record;
     record.p0 = scene.positions[t.v[0]];
     record.p1 = scene.positions[t.v[1]];

@@ -27,9 +27,8 @@ struct LightCdf {
 };
 
 struct LightTable {
-  std::vector<uint32_t> triangles;  ///< emitter triangles, by decreasing area (ties keep scene order)
-  std::vector<float> areas;
-  std::vector<EmitterRecord> records;  ///< per table entry
+  std::vector<uint32_t> triangles;     ///< emitter triangles, by decreasing area (ties keep scene order)
+  std::vector<EmitterRecord> records;  ///< per table entry (its area among them)
   LightCdf by_area;                    ///< running sum of areas
   LightCdf by_power;                   ///< running sum of area x luminance(Ke)
   bool empty() const { return triangles.empty(); }

@@ -39,17 +39,16 @@ Vec3 emission_of_extra_rays(const TracedScene& traced, const Camera& camera, con
   Vec3 sum(0.0f);
   if (extra <= 0) return sum;
   PixelSampler sampler(settings.sampler, settings.seed, pixel, frame, RngPurpose::kEmission);
-  std::array<float, 16> u1, u2;
-  for (int batch = 0; batch < extra; batch += 16) {
-    const int count = std::min(16, extra - batch);
+  std::array<float, kSampleBatch> u1, u2;
+  for (int batch = 0; batch < extra; batch += kSampleBatch) {
+    const int count = std::min(kSampleBatch, extra - batch);
     sampler.draw_2d(frame * static_cast<uint64_t>(extra) + static_cast<uint64_t>(batch), count, u1.data(), u2.data());
     for (size_t k = 0; k < static_cast<size_t>(count); ++k) {
       const Ray ray = camera_ray(camera, static_cast<float>(x) + u1[k], static_cast<float>(y) + u2[k]);
       ++rays;
       ++primary_rays;
       const Hit hit = intersect_closest(traced.accel, ray);
-      // Emitters shine on the side of their geometric normal only (SurfacePoint::front_face).
-      if (hit.found() && glm::dot(traced.scene.geometric_normal_raw(hit.triangle), ray.dir) < 0.0f)
+      if (hit.found() && seen_from_front(traced.scene, hit.triangle, ray.dir))
         sum += traced.scene.material_of(hit.triangle).ke;
     }
   }

@@ -2,11 +2,11 @@
 // then read-only. Depends on the scene, the accelerator and render settings.
 #pragma once
 
+#include <memory>
+
 #include "accel/accelerator.h"
 #include "render/light_sampler.h"
 #include "scene/scene.h"
-
-#include <memory>
 
 namespace lueur {
 
@@ -32,5 +32,10 @@ struct SurfacePoint {
 };
 
 SurfacePoint make_surface_point(const Scene& scene, const Ray& ray, const Hit& hit);
+
+/// Whether a ray along `dir` meets triangle `tri` on the side its winding faces (the side an emitter shines on).
+inline bool seen_from_front(const Scene& scene, uint32_t tri, const Vec3& dir) {
+  return glm::dot(scene.geometric_normal_raw(tri), dir) < 0.0f;
+}
 
 }  // namespace lueur

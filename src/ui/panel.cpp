@@ -120,10 +120,10 @@ void sampling_section(PanelModel& m) {
   setting_tooltip("sampler");
   enum_combo("Light sampling", kLightStrategyNames, r.lights);
   setting_tooltip("lights");
+  setting_slider("Le camera rays", "le-rays", r.le_rays);
   setting_slider("L1 shadow rays", "l1-rays", r.l1_rays);
   setting_slider("Blinn-Phong K", "blinn-k", r.blinn_k, "%.2f");
   setting_slider("L2 bounce rays", "l2-rays", r.l2_rays);
-  setting_slider("Le camera rays", "le-rays", r.le_rays);
   enum_combo("L2 reuse", kReuseModeNames, r.reuse);
   setting_tooltip("reuse");
   setting_slider("Recompute ratio", "recompute-ratio", r.recompute_ratio, "%.3f");
