@@ -61,15 +61,30 @@ int find_reusable_pixel(const Camera& camera, const ScreenBuffer& screen, uint32
 
 namespace {
 
-/// A direction on the cosine-weighted hemisphere around the shading normal (`shading_frame`'s z), or false when it dips
-/// below the geometric surface (such rays would leak through it and count as zero).
-bool sample_bounce_ray(const SurfacePoint& sp, const Frame& shading_frame, float u1, float u2, Ray& ray) {
-  const Vec3 local = sample_cosine_hemisphere(u1, u2);
-  const Vec3 wi = shading_frame.to_world(local);
-  if (!(local.z > 0.0f && glm::dot(wi, sp.geometric_normal) > 0.0f)) return false;
-  ray.origin = offset_origin(sp.position, sp.geometric_normal, wi);
-  ray.dir = wi;
-  return true;
+/// A batch of directions on the cosine-weighted hemisphere around the shading normal (`shading_frame`'s z), lane by
+/// lane and without branches, so that the compiler computes several per instruction. `open[k]` is false where the
+/// direction dips below the geometric surface: such rays would leak through it and count as zero. Every direction
+/// that is open leaves from the same origin, just off the surface on its geometric normal's side.
+struct BounceDirections {
+  using Lanes = std::array<float, kSampleBatch>;
+  Lanes x, y, z;
+  std::array<bool, kSampleBatch> open;
+
+  void place(size_t count, const Lanes& u1, const Lanes& u2, const Frame& shading_frame, const Vec3& geometric_normal) {
+    const Vec3 &t = shading_frame.tangent, &b = shading_frame.bitangent, &n = shading_frame.normal;
+    for (size_t k = 0; k < count; ++k) {
+      const Vec3 local = sample_cosine_hemisphere(u1[k], u2[k]);
+      x[k] = local.x * t.x + local.y * b.x + local.z * n.x;
+      y[k] = local.x * t.y + local.y * b.y + local.z * n.y;
+      z[k] = local.x * t.z + local.y * b.z + local.z * n.z;
+      open[k] = (local.z > 0.0f) & (x[k] * geometric_normal.x + y[k] * geometric_normal.y + z[k] * geometric_normal.z > 0.0f);
+    }
+  }
+};
+
+/// Where the bounce rays of `sp` leave from (offset_origin for any direction on its geometric normal's side).
+Vec3 bounce_origin(const SurfacePoint& sp) {
+  return offset_origin(sp.position, sp.geometric_normal, sp.geometric_normal);
 }
 
 }  // namespace
@@ -98,6 +113,8 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
   recompute.blinn_k = settings.blinn_k;
 
   const Frame shading_frame = Frame::from_normal(sp.shading_normal);
+  const Vec3 origin = bounce_origin(sp);
+  BounceDirections directions;
   const bool reuse = settings.reuse != ReuseMode::kOff;
   for (int batch_start = 0; batch_start < settings.l2_rays; batch_start += kSampleBatch) {
     // Trace a batch of bounce rays first, starting the screen reads as each ray lands: the next ray's traversal then
@@ -105,12 +122,15 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
     std::array<PendingBounce, kSampleBatch> pending;
     int pending_count = 0;
     const int count = std::min(kSampleBatch, settings.l2_rays - batch_start);
-    std::array<float, kSampleBatch> u1, u2;
+    BounceDirections::Lanes u1, u2;
     bounce_sampler.draw_2d(first_sample + static_cast<uint64_t>(batch_start), count, u1.data(), u2.data());
+    directions.place(static_cast<size_t>(count), u1, u2, shading_frame, sp.geometric_normal);
     for (size_t k = 0; k < static_cast<size_t>(count); ++k) {
+      if (!directions.open[k]) continue;
       PendingBounce& b = pending[static_cast<size_t>(pending_count)];
       b.sample = first_sample + static_cast<uint64_t>(batch_start) + k;
-      if (!sample_bounce_ray(sp, shading_frame, u1[k], u2[k], b.ray)) continue;
+      b.ray.origin = origin;
+      b.ray.dir = Vec3(directions.x[k], directions.y[k], directions.z[k]);
       ++rays_traced;
       ++result.bounce_rays;
       b.hit = intersect_closest(traced.accel, b.ray);
@@ -176,13 +196,18 @@ Vec3 estimate_ambient_occlusion(const TracedScene& traced, const SurfacePoint& s
   if (rays <= 0) return Vec3(0.0f);
   int open = 0;
   const Frame shading_frame = Frame::from_normal(sp.shading_normal);
-  std::array<float, kSampleBatch> u1, u2;
+  const Vec3 origin = bounce_origin(sp);
+  BounceDirections directions;
+  BounceDirections::Lanes u1, u2;
   for (int batch = 0; batch < rays; batch += kSampleBatch) {
     const int count = std::min(kSampleBatch, rays - batch);
     sampler.draw_2d(first_sample + static_cast<uint64_t>(batch), count, u1.data(), u2.data());
+    directions.place(static_cast<size_t>(count), u1, u2, shading_frame, sp.geometric_normal);
     for (size_t k = 0; k < static_cast<size_t>(count); ++k) {
+      if (!directions.open[k]) continue;
       Ray ray;
-      if (!sample_bounce_ray(sp, shading_frame, u1[k], u2[k], ray)) continue;
+      ray.origin = origin;
+      ray.dir = Vec3(directions.x[k], directions.y[k], directions.z[k]);
       ray.tmax = radius;
       ++rays_traced;
       if (!intersect_any(traced.accel, ray)) ++open;
