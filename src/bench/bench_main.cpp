@@ -36,7 +36,7 @@ struct BenchOptions {
   std::string scenes_dir = LUEUR_SHARED_SCENES;
   std::set<std::string> sections = {"build", "throughput", "convergence"};
   int ray_size = 512;          ///< rays are generated for a ray_size x ray_size view
-  double frame_seconds = 3.0;  ///< the renderer's frames per scene and thread count, at least (section frame)
+  double frame_seconds = 5.0;  ///< the renderer's frames per scene and thread count, over all rounds (section frame)
   TimingOptions timing;
   ConvergenceOptions convergence;
 };
@@ -223,20 +223,20 @@ int run(const BenchOptions& o) {
       if (!o.sections.count("frame")) continue;
       for (ThreadPool* pool : pools) {
         const int threads = pool->thread_count();
-        const FrameFigures f = measure_frames(b, o.ray_size, *pool, o.frame_seconds);
-        const double mix =
-            ray_mix_mrays(f, mrays[{"primary", threads}], mrays[{"bounce", threads}], mrays[{"shadow", threads}]);
-        const double ratio = mix > 0.0 ? f.renderer_mrays / mix : 0.0;
+        const FrameComparison c =
+            compare_frames_with_arrays(b, lueur.bvh, sets, o.ray_size, *pool, o.frame_seconds, o.timing);
+        const FrameFigures& f = c.frames;
         frames.push_back(Json{{"scene", b.name},
                               {"threads", threads},
                               {"frames", f.frames},
                               {"seconds", f.seconds},
                               {"rays", {{"primary", f.primary}, {"bounce", f.bounce}, {"any_hit", f.any_hit}}},
-                              {"renderer_mrays", f.renderer_mrays},
-                              {"arrays_mrays", mix},
-                              {"ratio", ratio}});
+                              {"renderer_mrays", c.renderer_mrays},
+                              {"arrays_mrays", c.arrays_mrays},
+                              {"ratio", c.ratio},
+                              {"round_ratios", c.ratios}});
         std::printf("%-16s %9zu %-8s %7d %10.2f %10.2f %7.3f  (renderer; the same rays in the arrays)\n",
-                    b.name.c_str(), triangles, "frame", threads, f.renderer_mrays, mix, ratio);
+                    b.name.c_str(), triangles, "frame", threads, c.renderer_mrays, c.arrays_mrays, c.ratio);
         std::fflush(stdout);
       }
     }
