@@ -1,6 +1,8 @@
 // L2 and AO against closed forms, the reuse modes against each other, where reuse happens, and anti-aliasing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "render/indirect_light.h"
 #include "render/renderer.h"
 #include "scene/default_scene.h"
@@ -75,13 +77,20 @@ TEST_P(ClosedBoxL2, IsRhoSquaredLeAtEveryPixel) {
     const PixelStats box_stats = render_layer_stats(*box, view, settings, Layer::kL2, 100);
     double mean = 0.0;
     for (const double m : box_stats.mean) mean += m;
-    EXPECT_NEAR(mean / static_cast<double>(box_stats.mean.size()), expected, 0.02 * expected) << name;
+    // The L1 store shares each cell's estimate among every bounce hit that looks it up, and near the box's edges
+    // those estimates are heavy-tailed: over 8 seeds x 300 frames the image mean spread by 0.016 with the store
+    // against 0.008 without, around the same centre (0.711 and 0.714), so its bound is wider.
+    const double tolerance = uses_cache(GetParam()) ? 0.05 : 0.02;
+    EXPECT_NEAR(mean / static_cast<double>(box_stats.mean.size()), expected, tolerance * expected) << name;
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Reuse, ClosedBoxL2, ::testing::Values(ReuseMode::kOff, ReuseMode::kFrame, ReuseMode::kAverage),
+INSTANTIATE_TEST_SUITE_P(Reuse, ClosedBoxL2, ::testing::Values(ReuseMode::kOff, ReuseMode::kFrame, ReuseMode::kAverage,
+                                                           ReuseMode::kCache, ReuseMode::kScreenCache),
                          [](const auto& param_info) {
-                           return std::string(kReuseModeNames[static_cast<size_t>(param_info.param)]);
+                           std::string name(kReuseModeNames[static_cast<size_t>(param_info.param)]);
+                           std::replace(name.begin(), name.end(), '+', '_');  // test names: letters, digits, _
+                           return name;
                          });
 
 TEST(AmbientOcclusion, IsAlbedoWithNothingWithinTheRadius) {
@@ -230,10 +239,19 @@ TEST(ReuseModes, ReuseFractionLayerIsHighOnTheDefaultView) {
   const double fraction = static_cast<double>(r.l2_reused) / static_cast<double>(r.l2_bounce_hits);
   EXPECT_GT(fraction, 0.5);
   EXPECT_LT(fraction, 1.0);  // some bounce rays reach surfaces the camera does not see
+  // Red: the share of a pixel's bounce hits served by the screen; green (the L1 store) is 0 here; the three add to 1
+  // wherever a bounce ray hit something.
   const Image layer = layer_average(film, Layer::kReuseFraction);
   double mean = 0.0;
-  for (const float v : layer.rgb) mean += v;
-  EXPECT_NEAR(mean / static_cast<double>(layer.rgb.size()), fraction, 0.15);
+  for (size_t i = 0; i < layer.rgb.size(); i += 3) {
+    mean += layer.rgb[i];
+    EXPECT_EQ(layer.rgb[i + 1], 0.0f);
+    const float total = layer.rgb[i] + layer.rgb[i + 1] + layer.rgb[i + 2];
+    if (total > 0.0f) {
+      EXPECT_NEAR(total, 1.0f, 1e-5f);
+    }
+  }
+  EXPECT_NEAR(mean / static_cast<double>(layer.rgb.size() / 3), fraction, 0.15);
   // The two explanatory layers add up to L2.
   const Image l2 = layer_average(film, Layer::kL2), reused = layer_average(film, Layer::kL2Reused),
               recomputed = layer_average(film, Layer::kL2Recomputed);

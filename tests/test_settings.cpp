@@ -30,6 +30,8 @@ Settings unusual_settings() {
   s.render.l2_rays = 5;
   s.render.reuse = ReuseMode::kAverage;
   s.render.recompute_ratio = 0.3f;
+  s.render.cache_cell_pixels = 3.5f;
+  s.render.cache_mb = 96;
   s.render.reuse_diffuse_only = true;
   s.render.ao_rays = 2;
   s.render.ao_radius = 123.456f;

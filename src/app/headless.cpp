@@ -53,7 +53,8 @@ struct RunFigures {
   double seconds = 0.0;
   uint64_t rays = 0;
   double l2_seconds = 0.0;
-  uint64_t bounce_hits = 0, reused = 0;
+  uint64_t bounce_hits = 0, reused = 0, cached = 0;
+  L1CacheStats cache;
 };
 
 /// The PNG through the display shaders of an off-screen EGL or OSMesa context, with the panel if asked.
@@ -71,6 +72,8 @@ void write_gl_screenshot(const AppOptions& options, const Settings& described, c
     panel.stats.l2_seconds = figures.l2_seconds;
     panel.stats.l2_bounce_hits = figures.bounce_hits;
     panel.stats.l2_reused = figures.reused;
+    panel.stats.l2_cached = figures.cached;
+    panel.stats.cache = figures.cache;
     panel.film_width = film.width;
     panel.film_height = film.height;
     describe_scene(panel, traced);
@@ -115,7 +118,8 @@ int run_headless(const AppOptions& options) {
 
   const Clock::time_point start = Clock::now();
   Clock::time_point last_progress = start;
-  uint64_t rays = 0, bounce_hits = 0, reused = 0, dropped = 0;
+  uint64_t rays = 0, bounce_hits = 0, reused = 0, cached = 0, dropped = 0;
+  L1CacheStats cache;
   double l2_seconds = 0.0;
   const bool tty = ::isatty(STDERR_FILENO);
   const double time_limit = options.settings.time_limit;
@@ -125,6 +129,8 @@ int run_headless(const AppOptions& options) {
     rays += frame.rays;
     bounce_hits += frame.l2_bounce_hits;
     reused += frame.l2_reused;
+    cached += frame.l2_cached;
+    cache = frame.cache;
     dropped += frame.dropped_samples;
     l2_seconds += frame.l2_seconds;
     const double elapsed = seconds_since(start);
@@ -153,7 +159,7 @@ int run_headless(const AppOptions& options) {
                  "(a scene of extreme scale or emission)\n",
                  static_cast<unsigned long long>(dropped));
   if (options.gl != HeadlessGl::kNone) {
-    write_gl_screenshot(options, described, film, traced, {elapsed, rays, l2_seconds, bounce_hits, reused});
+    write_gl_screenshot(options, described, film, traced, {elapsed, rays, l2_seconds, bounce_hits, reused, cached, cache});
   } else {
     // The EXR holds every rendered layer; PNG and PFM show the combined image or the chosen --view.
     write_image(options.out_path, shown_image(film, settings.enabled, options.settings.weights, layer),
@@ -167,6 +173,17 @@ int run_headless(const AppOptions& options) {
                  bounce_hits ? 100.0 * static_cast<double>(reused) / static_cast<double>(bounce_hits) : 0.0,
                  static_cast<double>(bounce_hits) * 1e-6,
                  std::string(enum_name(kReuseModeNames, settings.reuse)).c_str());
+  if (settings.pass_enabled(Pass::kL2) && uses_cache(settings.reuse)) {
+    const auto share = [&](uint64_t n) {
+      return bounce_hits ? 100.0 * static_cast<double>(n) / static_cast<double>(bounce_hits) : 0.0;
+    };
+    std::fprintf(stderr,
+                 "lueur: L1 store: %.1f%% of the bounce hits took L1 from it, %.1f%% recomputed it; %llu cells, %.1f "
+                 "MiB of %d MiB%s\n",
+                 share(cached), share(bounce_hits - reused - cached), static_cast<unsigned long long>(cache.cells),
+                 static_cast<double>(cache.bytes) / (1 << 20), settings.cache_mb,
+                 cache.full ? " (full: new cells refused)" : "");
+  }
   std::printf("%s\n", options.out_path.c_str());
   return 0;
 }

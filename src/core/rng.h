@@ -51,6 +51,8 @@ enum class RngPurpose : uint64_t {
   kOcclusion = 4,
   kRecompute = 5,
   kEmission = 6,  ///< the camera rays that only see Le (RenderSettings::le_rays beyond the first)
+  kCacheFeed = 7,    ///< where a primary hit's L1 goes into the L1 store (the jitter within a cell)
+  kCacheLookup = 8,  ///< where L2's bounce hits look up (and feed) the L1 store
 };
 
 /// The stream of one pixel in one frame for one purpose.

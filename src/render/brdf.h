@@ -31,4 +31,19 @@ inline Vec3 eval_brdf_diffuse(const Material& m, float blinn_k) {
   return m.has_specular() ? m.kd * kInvPi : m.kd * (blinn_k * kInvPi);
 }
 
+/// Whether the BRDF toward `wo` is the same for every direction of arriving light above the surface, so that L1 is
+/// that constant times the arriving light: Lambert (no Ks, K = 1), or the report's mix whose lobe has exponent 0 (an
+/// MTL without Ns) seen from above the shading normal `n` (every half vector then lies above it, where that lobe is
+/// the constant 1 / pi).
+inline bool brdf_is_constant(const Material& m, float blinn_k, const Vec3& n, const Vec3& wo) {
+  if (m.has_specular()) return false;
+  return blinn_k >= 1.0f || (m.ns == 0.0f && glm::dot(n, wo) > 0.0f);
+}
+
+/// That constant, where brdf_is_constant holds: what eval_brdf gives for any light direction above the surface.
+inline Vec3 constant_brdf(const Material& m, float blinn_k) {
+  if (blinn_k >= 1.0f) return m.kd * kInvPi;
+  return m.kd * (blinn_k * kInvPi + (1.0f - blinn_k) * blinn_phong_lobe(1.0f, 0.0f));
+}
+
 }  // namespace lueur

@@ -94,20 +94,23 @@ struct PlacedLightSamples {
 }  // namespace
 
 Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, const DirectLightOptions& options,
-                           PixelSampler& sampler, uint64_t first_sample, uint64_t& rays_traced, Vec3* diffuse_part) {
+                           PixelSampler& sampler, uint64_t first_sample, uint64_t& rays_traced, Vec3* diffuse_part,
+                           Vec3* arriving) {
   const LightTable& table = traced.lights;
   if (diffuse_part) *diffuse_part = Vec3(0.0f);
+  if (arriving) *arriving = Vec3(0.0f);
   if (table.empty() || options.rays <= 0) return Vec3(0.0f);
   const Material& material = traced.scene.material_of(sp.triangle);
   const Vec3 f_diffuse = eval_brdf_diffuse(material, options.blinn_k);
 
-  Vec3 sum(0.0f), diffuse_sum(0.0f);
-  auto accumulate = [&](const Vec3& arriving, const Vec3& wi) {
-    if (arriving.r <= 0.0f && arriving.g <= 0.0f && arriving.b <= 0.0f) return;
+  Vec3 sum(0.0f), diffuse_sum(0.0f), arriving_sum(0.0f);
+  auto accumulate = [&](const Vec3& light, const Vec3& wi) {
+    if (light.r <= 0.0f && light.g <= 0.0f && light.b <= 0.0f) return;
     Vec3 f = eval_brdf(material, sp.shading_normal, wi, sp.wo, options.blinn_k);
     if (options.specular_only) f -= f_diffuse;
-    sum += arriving * f;
-    diffuse_sum += arriving * f_diffuse;
+    sum += light * f;
+    diffuse_sum += light * f_diffuse;
+    arriving_sum += light;
   };
   Vec3 wi(0.0f);
   if (options.strategy == LightStrategy::kAll) {
@@ -142,13 +145,14 @@ Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, co
         shadow.tmax = 1.0f - 1e-4f;  // stop just short of the light itself
         ++rays_traced;
         if (intersect_any(traced.accel, shadow)) continue;
-        const Vec3 arriving = table.records[placed.light[k]].ke * placed.scale[k] / placed.pmf[k];
-        accumulate(arriving, Vec3(placed.wi_x[k], placed.wi_y[k], placed.wi_z[k]));
+        const Vec3 light = table.records[placed.light[k]].ke * placed.scale[k] / placed.pmf[k];
+        accumulate(light, Vec3(placed.wi_x[k], placed.wi_y[k], placed.wi_z[k]));
       }
     }
   }
   const float inv = 1.0f / static_cast<float>(options.rays);
   if (diffuse_part) *diffuse_part = diffuse_sum * inv;
+  if (arriving) *arriving = arriving_sum * inv;
   return sum * inv;
 }
 

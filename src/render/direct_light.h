@@ -19,9 +19,10 @@ struct DirectLightOptions {
 /// `first_sample` onwards of `sampler`, each drawing the light choice (1D) and the point on the light (2D), or with
 /// kAll one point per emitter. Unbiased for every strategy. Adds the shadow rays it traced to `rays_traced`. When
 /// `diffuse_part` is given it receives, from the same samples, the part reflected by the view-independent term of
-/// the BRDF alone.
+/// the BRDF alone. When `arriving` is given it receives the light arriving from the emitters, weighted by cos at the
+/// surface and without the BRDF, averaged over the same samples (what the L1 store keeps).
 Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, const DirectLightOptions& options,
                            PixelSampler& sampler, uint64_t first_sample, uint64_t& rays_traced,
-                           Vec3* diffuse_part = nullptr);
+                           Vec3* diffuse_part = nullptr, Vec3* arriving = nullptr);
 
 }  // namespace lueur

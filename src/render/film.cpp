@@ -1,6 +1,8 @@
 // Averages and the weighted combination of the per-pass sums.
 #include "render/film.h"
 
+#include <algorithm>
+
 namespace lueur {
 
 void Film::reset(int new_width, int new_height, const std::array<bool, kLayerCount>& layers) {
@@ -14,6 +16,13 @@ void Film::reset(int new_width, int new_height, const std::array<bool, kLayerCou
     else
       sum.clear();
   }
+  l1_cache.reset(0);
+}
+
+void Film::reset(const RenderSettings& settings) {
+  reset(settings.width, settings.height, layers_needed(settings));
+  if (settings.pass_enabled(Pass::kL2) && uses_cache(settings.reuse))
+    l1_cache.reset(static_cast<uint64_t>(std::max(settings.cache_mb, 0)) << 20);
 }
 
 Image layer_average(const Film& film, Layer layer) {

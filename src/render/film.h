@@ -1,11 +1,12 @@
-// The accumulation buffers: one float RGB sum per pass plus the frame count, and the image they average to.
-// Depends on render settings only.
+// The accumulation buffers: one float RGB sum per pass plus the frame count, and the image they average to; and the
+// L1 store, which accumulates with them. Depends on render settings and the L1 store.
 #pragma once
 
 #include <array>
 #include <optional>
 #include <vector>
 
+#include "render/l1_cache.h"
 #include "render/settings.h"
 
 namespace lueur {
@@ -24,10 +25,11 @@ struct Film {
   int width = 0, height = 0;
   std::array<std::vector<float>, kLayerCount> sums;  ///< per layer, 3 x width x height; empty when not rendered
   uint64_t frames = 0;
+  L1Cache l1_cache;  ///< empty, with no room, unless the settings' reuse mode uses it
 
-  /// Sizes the buffers for the layers these settings need and clears everything.
+  /// Sizes the buffers for the layers these settings need and clears everything (the L1 store with no room).
   void reset(int new_width, int new_height, const std::array<bool, kLayerCount>& layers);
-  void reset(const RenderSettings& settings) { reset(settings.width, settings.height, layers_needed(settings)); }
+  void reset(const RenderSettings& settings);
   size_t pixel_count() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
   bool has(Layer l) const { return !sums[static_cast<size_t>(l)].empty(); }
   bool has(Pass p) const { return has(layer_of(p)); }

@@ -107,10 +107,44 @@ void ScreenBuffer::resize(int w, int h) {
   l1_average.clear();
 }
 
+namespace {
+
+/// L1(q) toward p from the L1 store where q's jittered cell is ready (returns true), otherwise traced anew and
+/// recorded for the store (returns false). From the store: the BRDF's constant part times the cell's arriving light,
+/// plus whatever the BRDF has beyond it, traced toward p.
+bool l1_from_store(const TracedScene& traced, const SurfacePoint& q, const RenderSettings& settings,
+                   const DirectLightOptions& recompute, const L1CacheAccess& cache, PixelSampler& sampler,
+                   uint64_t first_shadow_sample, uint64_t& rays_traced, Vec3& l1_q) {
+  const float u1 = cache.jitter->next_float(), u2 = cache.jitter->next_float();
+  const L1CacheKey key = jittered_key(*cache.grid, q.position, q.geometric_normal, u1, u2);
+  const uint64_t hash = hash_of(key);
+  const L1CacheCell* cell = cache.store->find(key, hash);
+  if (cell && cell->samples >= kL1CacheMinSamples) {
+    const Vec3 arriving = cell->sum / static_cast<float>(cell->samples);
+    const Material& mq = traced.scene.material_of(q.triangle);
+    if (brdf_is_constant(mq, settings.blinn_k, q.shading_normal, q.wo)) {
+      l1_q = constant_brdf(mq, settings.blinn_k) * arriving;
+    } else {
+      DirectLightOptions rest = recompute;
+      rest.specular_only = true;
+      l1_q = eval_brdf_diffuse(mq, settings.blinn_k) * arriving +
+             estimate_direct_light(traced, q, rest, sampler, first_shadow_sample, rays_traced);
+    }
+    return true;
+  }
+  Vec3 arriving(0.0f);
+  l1_q = estimate_direct_light(traced, q, recompute, sampler, first_shadow_sample, rays_traced, nullptr, &arriving);
+  const auto samples = static_cast<uint32_t>(std::max(recompute.rays, 0));
+  cache.records->push_back(L1CacheRecord{key, hash, arriving * static_cast<float>(samples), samples});
+  return false;
+}
+
+}  // namespace
+
 IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& camera, const ScreenBuffer& screen,
                                        const SurfacePoint& sp, const RenderSettings& settings,
                                        PixelSampler& bounce_sampler, PixelSampler& recompute_sampler,
-                                       uint64_t first_sample, uint64_t& rays_traced) {
+                                       uint64_t first_sample, uint64_t& rays_traced, const L1CacheAccess* cache) {
   IndirectResult result;
   if (settings.l2_rays <= 0) return result;
   const Scene& scene = traced.scene;
@@ -124,7 +158,7 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
   const Frame shading_frame = Frame::from_normal(sp.shading_normal);
   const Vec3 origin = bounce_origin(sp);
   BounceDirections directions;
-  const bool reuse = settings.reuse != ReuseMode::kOff;
+  const bool reuse = uses_screen(settings.reuse);
   for (int batch_start = 0; batch_start < settings.l2_rays; batch_start += kSampleBatch) {
     // Trace a batch of bounce rays first, starting the screen reads as each ray lands: the next ray's traversal then
     // hides their cache misses, which otherwise cost more than the traversal itself.
@@ -180,15 +214,24 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
           }
         }
       }
-      if (!reused)
-        l1_q = estimate_direct_light(traced, make_surface_point(scene, b.ray, b.hit), recompute, recompute_sampler,
-                                     first_shadow_sample, rays_traced);
+      bool cached = false;
+      if (!reused) {
+        const SurfacePoint q = make_surface_point(scene, b.ray, b.hit);
+        if (cache)
+          cached = l1_from_store(traced, q, settings, recompute, *cache, recompute_sampler, first_shadow_sample,
+                                 rays_traced, l1_q);
+        else
+          l1_q = estimate_direct_light(traced, q, recompute, recompute_sampler, first_shadow_sample, rays_traced);
+      }
 
       // f cos / pdf with pdf = cos / pi.
       const Vec3 contribution = eval_brdf(material, sp.shading_normal, b.ray.dir, sp.wo, settings.blinn_k) * kPi * l1_q;
       if (reused) {
         result.from_reused += contribution;
         ++result.reused;
+      } else if (cached) {
+        result.from_cached += contribution;
+        ++result.cached;
       } else {
         result.from_recomputed += contribution;
       }
@@ -197,7 +240,8 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
   const float inv = 1.0f / static_cast<float>(settings.l2_rays);
   result.from_reused *= inv;
   result.from_recomputed *= inv;
-  result.l2 = result.from_reused + result.from_recomputed;
+  result.from_cached *= inv;
+  result.l2 = result.from_reused + result.from_recomputed + result.from_cached;
   return result;
 }
 

@@ -6,6 +6,7 @@
 
 #include "core/pixel_sampler.h"
 #include "render/camera.h"
+#include "render/l1_cache.h"
 #include "render/settings.h"
 #include "render/traced_scene.h"
 
@@ -34,6 +35,8 @@ struct IndirectResult {
   int bounce_rays = 0;         ///< bounce rays traced
   int bounce_hits = 0;         ///< bounce rays that hit a surface
   int reused = 0;              ///< of those, how many took L1 from the screen
+  Vec3 from_cached{0.0f};      ///< the part whose L1(q) came from the L1 store
+  int cached = 0;              ///< bounce hits that took L1 from the store
 };
 
 /// The screen pixel whose primary ray hit q, or -1: q projects into it, its primary ray hit q's triangle, and its
@@ -45,11 +48,15 @@ int find_reusable_pixel(const Camera& camera, const ScreenBuffer& screen, uint32
 /// `bounce_sampler`. Where a ray hits q, L1(q) toward p is taken from the pixel q projects to when that pixel's
 /// primary ray hit q (find_reusable_pixel), otherwise recomputed with settings.recompute_rays() shadow rays, drawn
 /// from `recompute_sampler` (bounce b's shadow rays are its samples b x recompute_rays onwards). Emission at q is
-/// not added: it is already L1 at p.
+/// not added: it is already L1 at p. With `cache` (the store modes), a hit the screen did not serve looks up its
+/// jittered cell: a cell with kL1CacheMinSamples samples gives the constant part of L1(q) (the rest of the BRDF is
+/// traced toward p, as --reuse-diffuse-only does); otherwise L1(q) is recomputed and its arriving light becomes a
+/// record for the store.
 IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& camera, const ScreenBuffer& screen,
                                        const SurfacePoint& sp, const RenderSettings& settings,
                                        PixelSampler& bounce_sampler, PixelSampler& recompute_sampler,
-                                       uint64_t first_sample, uint64_t& rays_traced);
+                                       uint64_t first_sample, uint64_t& rays_traced,
+                                       const L1CacheAccess* cache = nullptr);
 
 /// Ambient occlusion: Kd times the fraction of `rays` cosine rays (samples `first_sample` onwards) that travel
 /// farther than `radius`, the light of a uniform white sky that nearby geometry blocks.

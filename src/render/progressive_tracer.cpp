@@ -207,6 +207,8 @@ void ProgressiveTracer::run() {
       stats_.l2_seconds += result.l2_seconds;
       stats_.l2_bounce_hits += result.l2_bounce_hits;
       stats_.l2_reused += result.l2_reused;
+      stats_.l2_cached += result.l2_cached;
+      stats_.cache = result.cache;
       if (divisor == 1)
         stats_.frames = film.frames;
       else

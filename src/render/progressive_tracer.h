@@ -26,7 +26,8 @@ struct TracerStats {
   uint64_t rays = 0;      ///< rays traced since the last restart
   double last_frame_seconds = 0.0;
   double l2_seconds = 0.0;
-  uint64_t l2_bounce_hits = 0, l2_reused = 0;
+  uint64_t l2_bounce_hits = 0, l2_reused = 0, l2_cached = 0;
+  L1CacheStats cache;  ///< the L1 store after the last frame
   double mrays_per_second() const { return seconds > 0.0 ? static_cast<double>(rays) * 1e-6 / seconds : 0.0; }
 };
 

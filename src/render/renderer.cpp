@@ -55,9 +55,17 @@ Vec3 emission_of_extra_rays(const TracedScene& traced, const Camera& camera, con
   return sum;
 }
 
-/// Phase 1 for one pixel.
+/// The colour of a cell of the L1 store in the cache-cells view: its key hashed into RGB.
+Vec3 cell_colour(const L1CacheKey& key) {
+  const uint64_t h = hash_of(key);
+  return Vec3(static_cast<float>(h & 0xffu), static_cast<float>((h >> 8) & 0xffu),
+              static_cast<float>((h >> 16) & 0xffu)) * (1.0f / 255.0f);
+}
+
+/// Phase 1 for one pixel. With a store grid, its L1 estimate becomes a record for the L1 store.
 void trace_primary(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, const Film& film,
-                   int x, int y, uint64_t frame, FrameBuffers& out, uint64_t& rays, uint64_t& primary_rays) {
+                   int x, int y, uint64_t frame, FrameBuffers& out, uint64_t& rays, uint64_t& primary_rays,
+                   const L1CacheGrid* grid, std::vector<L1CacheRecord>* records) {
   const size_t i = pixel_index(x, y, camera.width);
   const uint64_t pixel = i;
   PixelSampler camera_sampler(settings.sampler, settings.seed, pixel, frame, RngPurpose::kCamera);
@@ -84,16 +92,25 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
   if (le) set_layer(out, Layer::kLe, i, ((sp.front_face ? material.ke : Vec3(0.0f)) + extra_emission) / le_rays);
 
   const bool l2 = settings.pass_enabled(Pass::kL2);
-  const bool screen_needs_l1 = l2 && settings.reuse != ReuseMode::kOff;
+  const bool screen_needs_l1 = l2 && uses_screen(settings.reuse);
+  if (grid) set_layer(out, Layer::kCacheCells, i, cell_colour(grid->key(sp.position, sp.geometric_normal,
+                                                                         grid->level_at(sp.position))));
   if (settings.pass_enabled(Pass::kL1) || screen_needs_l1) {
     PixelSampler sampler(settings.sampler, settings.seed, pixel, frame, RngPurpose::kDirect);
     DirectLightOptions options;
     options.strategy = settings.lights;
     options.rays = settings.l1_rays;
     options.blinn_k = settings.blinn_k;
-    Vec3 diffuse(0.0f);
+    Vec3 diffuse(0.0f), arriving(0.0f);
     const Vec3 l1 = estimate_direct_light(traced, sp, options, sampler, frame * static_cast<uint64_t>(options.rays),
-                                          rays, &diffuse);
+                                          rays, &diffuse, grid ? &arriving : nullptr);
+    if (grid && options.rays > 0) {
+      Pcg32 cell_jitter = make_pixel_rng(settings.seed, pixel, frame, RngPurpose::kCacheFeed);
+      const float u1 = cell_jitter.next_float(), u2 = cell_jitter.next_float();
+      const L1CacheKey key = jittered_key(*grid, sp.position, sp.geometric_normal, u1, u2);
+      const auto samples = static_cast<uint32_t>(options.rays);
+      records->push_back(L1CacheRecord{key, hash_of(key), arriving * static_cast<float>(samples), samples});
+    }
     set_layer(out, Layer::kL1, i, l1);
     set_layer(out, Layer::kL1Diffuse, i, diffuse);
     const Vec3 screen_l1 = settings.reuse_diffuse_only ? diffuse : l1;
@@ -116,23 +133,46 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
 /// Phase 2 for one pixel.
 void trace_indirect(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, int x, int y,
                     uint64_t frame, FrameBuffers& out, uint64_t& rays, uint64_t& bounce_rays, uint64_t& bounce_hits,
-                    uint64_t& reused) {
+                    uint64_t& reused, uint64_t& cached, const L1Cache* store, const L1CacheGrid* grid,
+                    std::vector<L1CacheRecord>* records) {
   const size_t i = pixel_index(x, y, camera.width);
   const SurfacePoint& sp = out.hits[i];
   if (sp.triangle == kNoHit) return;
   PixelSampler bounce_sampler(settings.sampler, settings.seed, i, frame, RngPurpose::kIndirect);
   PixelSampler recompute_sampler(settings.sampler, settings.seed, i, frame, RngPurpose::kRecompute);
+  Pcg32 jitter(0, 0);
+  L1CacheAccess access;
+  if (store) {
+    jitter = make_pixel_rng(settings.seed, i, frame, RngPurpose::kCacheLookup);
+    access = L1CacheAccess{store, grid, &jitter, records};
+  }
   const IndirectResult r =
       estimate_indirect_light(traced, camera, out.screen, sp, settings, bounce_sampler, recompute_sampler,
-                              frame * static_cast<uint64_t>(settings.l2_rays), rays);
+                              frame * static_cast<uint64_t>(settings.l2_rays), rays, store ? &access : nullptr);
   set_layer(out, Layer::kL2, i, r.l2);
   set_layer(out, Layer::kL2Reused, i, r.from_reused);
   set_layer(out, Layer::kL2Recomputed, i, r.from_recomputed);
-  const float fraction = r.bounce_hits > 0 ? static_cast<float>(r.reused) / static_cast<float>(r.bounce_hits) : 0.0f;
-  set_layer(out, Layer::kReuseFraction, i, Vec3(fraction));
+  set_layer(out, Layer::kL2Cached, i, r.from_cached);
+  // Where the bounce hits took L1(q) from, as shares: red the screen, green the store, blue recomputed.
+  if (r.bounce_hits > 0) {
+    const float hits = static_cast<float>(r.bounce_hits);
+    set_layer(out, Layer::kReuseFraction, i,
+              Vec3(static_cast<float>(r.reused), static_cast<float>(r.cached),
+                   static_cast<float>(r.bounce_hits - r.reused - r.cached)) / hits);
+  }
   bounce_rays += static_cast<uint64_t>(r.bounce_rays);
   bounce_hits += static_cast<uint64_t>(r.bounce_hits);
   reused += static_cast<uint64_t>(r.reused);
+  cached += static_cast<uint64_t>(r.cached);
+}
+
+int tile_count(int width, int height) {
+  return ((width + kTileSize - 1) / kTileSize) * ((height + kTileSize - 1) / kTileSize);
+}
+
+/// The tile (the task of for_each_tile) that pixel (x, y) belongs to.
+int tile_of(int x, int y, int width) {
+  return (y / kTileSize) * ((width + kTileSize - 1) / kTileSize) + x / kTileSize;
 }
 
 /// Runs `per_pixel(x, y, worker)` over every pixel, one tile per task.
@@ -150,7 +190,7 @@ void for_each_tile(ThreadPool& pool, int width, int height, const std::atomic<bo
 
 /// Per-worker counters, padded apart so that workers do not share cache lines.
 struct alignas(64) WorkerCounters {
-  uint64_t rays = 0, primary_rays = 0, bounce_rays = 0, bounce_hits = 0, reused = 0;
+  uint64_t rays = 0, primary_rays = 0, bounce_rays = 0, bounce_hits = 0, reused = 0, cached = 0;
 };
 
 }  // namespace
@@ -172,16 +212,37 @@ FrameResult render_frame(const TracedScene& traced, const Camera& camera, const 
   if (settings.pass_enabled(Pass::kL2) && settings.reuse == ReuseMode::kAverage)
     buffers.screen.l1_average.assign(film.pixel_count(), Vec3(0.0f));
 
+  // The L1 store: read as the previous frames left it, while this frame's estimates wait in per-tile records (phase
+  // 1's tiles, then phase 2's) to be merged in that order at the end. A new generation starts it afresh, smaller.
+  const bool store = settings.pass_enabled(Pass::kL2) && uses_cache(settings.reuse);
+  L1CacheGrid grid;
+  const int tiles = tile_count(width, height);
+  std::vector<std::vector<L1CacheRecord>> records(store ? 2 * static_cast<size_t>(tiles) : 0);
+  if (store) {
+    const int generation = l1_cache_generation(frame);
+    if (film.l1_cache.generation != generation) {
+      film.l1_cache.clear();
+      film.l1_cache.generation = generation;
+    }
+    grid = make_l1_cache_grid(camera, traced.lower, traced.diagonal, settings.cache_cell_pixels, generation);
+  }
+  const auto tile_records = [&](int phase, int x, int y) {
+    return &records[static_cast<size_t>(phase * tiles + tile_of(x, y, width))];
+  };
+
   std::vector<WorkerCounters> counters(static_cast<size_t>(pool.thread_count()));
   for_each_tile(pool, width, height, cancel, [&](int x, int y, int worker) {
     WorkerCounters& c = counters[static_cast<size_t>(worker)];
-    trace_primary(traced, camera, settings, film, x, y, frame, buffers, c.rays, c.primary_rays);
+    trace_primary(traced, camera, settings, film, x, y, frame, buffers, c.rays, c.primary_rays,
+                  store ? &grid : nullptr, store ? tile_records(0, x, y) : nullptr);
   });
   if (settings.pass_enabled(Pass::kL2)) {
     const Clock::time_point l2_start = Clock::now();
     for_each_tile(pool, width, height, cancel, [&](int x, int y, int worker) {
       WorkerCounters& c = counters[static_cast<size_t>(worker)];
-      trace_indirect(traced, camera, settings, x, y, frame, buffers, c.rays, c.bounce_rays, c.bounce_hits, c.reused);
+      trace_indirect(traced, camera, settings, x, y, frame, buffers, c.rays, c.bounce_rays, c.bounce_hits, c.reused,
+                     c.cached, store ? &film.l1_cache : nullptr, store ? &grid : nullptr,
+                     store ? tile_records(1, x, y) : nullptr);
     });
     result.l2_seconds = std::chrono::duration<double>(Clock::now() - l2_start).count();
   }
@@ -191,11 +252,16 @@ FrameResult render_frame(const TracedScene& traced, const Camera& camera, const 
     result.bounce_rays += c.bounce_rays;
     result.l2_bounce_hits += c.bounce_hits;
     result.l2_reused += c.reused;
+    result.l2_cached += c.cached;
   }
 
   if (cancel && cancel->load()) {
     result.completed = false;
     return result;
+  }
+  if (store) {
+    film.l1_cache.merge(records, pool);
+    result.cache = film.l1_cache.stats();
   }
   for (size_t l = 0; l < kLayerCount; ++l) {
     const std::vector<Vec3>& values = buffers.values[l];

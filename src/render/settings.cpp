@@ -11,6 +11,10 @@ std::array<bool, kLayerCount> layers_needed(const RenderSettings& settings) {
     needed[static_cast<size_t>(Layer::kL2Reused)] = true;
     needed[static_cast<size_t>(Layer::kL2Recomputed)] = true;
     needed[static_cast<size_t>(Layer::kReuseFraction)] = true;
+    if (uses_cache(settings.reuse)) {
+      needed[static_cast<size_t>(Layer::kL2Cached)] = true;
+      needed[static_cast<size_t>(Layer::kCacheCells)] = true;
+    }
   }
   return needed;
 }

@@ -24,17 +24,37 @@ inline constexpr std::array<std::string_view, kPassCount> kPassNames = {"le", "l
 enum class LightStrategy : int { kAll = 0, kUniform = 1, kArea = 2, kPower = 3 };
 inline constexpr std::array<std::string_view, 4> kLightStrategyNames = {"all", "uniform", "area", "power"};
 
-/// Where L2 takes L1(q) from when a bounce ray hits q (the report's screen-space reuse).
-enum class ReuseMode : int { kOff = 0, kFrame = 1, kAverage = 2 };
-inline constexpr std::array<std::string_view, 3> kReuseModeNames = {"off", "frame", "average"};
+/// Where L2 takes L1(q) from when a bounce ray hits q: nowhere (recompute), the screen (the report's reuse: this
+/// frame's pixels or their running average), the world-space L1 store (the report's improvement II-B), or the screen
+/// where it saw q and the store elsewhere.
+enum class ReuseMode : int { kOff = 0, kFrame = 1, kAverage = 2, kCache = 3, kScreenCache = 4 };
+inline constexpr std::array<std::string_view, 5> kReuseModeNames = {"off", "frame", "average", "cache",
+                                                                    "screen+cache"};
+inline constexpr bool uses_screen(ReuseMode m) {
+  return m == ReuseMode::kFrame || m == ReuseMode::kAverage || m == ReuseMode::kScreenCache;
+}
+inline constexpr bool uses_cache(ReuseMode m) { return m == ReuseMode::kCache || m == ReuseMode::kScreenCache; }
 
-/// What the film accumulates: the four passes, then the layers that explain L2's screen-space reuse
-/// (report figures 7 and 8) and the per-pixel fraction of L2 rays that reused L1.
+/// What the film accumulates: the four passes, then the layers that explain L2's reuse: the parts of L2 whose L1(q)
+/// came from the screen (report figure 7), was traced anew (figure 8) or came from the L1 store, and where L2's bounce
+/// hits took L1(q) from (red: the screen, green: the store, blue: recomputed, as shares of the hits).
 /// `l1-diffuse` is the view-independent part of L1, kept when L2 reuses its running average diffuse-only.
-enum class Layer : int { kLe = 0, kL1, kL2, kAo, kL2Reused, kL2Recomputed, kReuseFraction, kL1Diffuse };
-inline constexpr int kLayerCount = 8;
+/// `cache-cells` shows the L1 store's cells at the primary hits, each in its own hashed colour.
+enum class Layer : int {
+  kLe = 0,
+  kL1,
+  kL2,
+  kAo,
+  kL2Reused,
+  kL2Recomputed,
+  kReuseFraction,
+  kL1Diffuse,
+  kL2Cached,
+  kCacheCells
+};
+inline constexpr int kLayerCount = 10;
 inline constexpr std::array<std::string_view, kLayerCount> kLayerNames = {
-    "le", "l1", "l2", "ao", "l2-reused", "l2-recomputed", "reuse-fraction", "l1-diffuse"};
+    "le", "l1", "l2", "ao", "l2-reused", "l2-recomputed", "reuse-fraction", "l1-diffuse", "l2-cached", "cache-cells"};
 inline constexpr Layer layer_of(Pass p) { return static_cast<Layer>(static_cast<int>(p)); }
 
 /// Finds `name` in a name table; nullopt when it is not there.
@@ -62,6 +82,8 @@ struct RenderSettings {
   ReuseMode reuse = ReuseMode::kFrame;
   float recompute_ratio = 0.125f;   ///< L1(q) is recomputed with this share of l1_rays (at least one ray)
   bool reuse_diffuse_only = false;  ///< reuse only the view-independent part of L1; recompute the rest
+  float cache_cell_pixels = 8.0f;   ///< the L1 store's cells span about this many pixels at first (then shrink)
+  int cache_mb = 256;               ///< the L1 store's memory cap, in MiB
   int ao_rays = 16;
   float ao_radius = 0.0f;  ///< world units; 0 or less: a tenth of the scene's bounding-box diagonal
   uint64_t seed = 0;

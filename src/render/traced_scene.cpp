@@ -11,7 +11,9 @@ std::shared_ptr<const TracedScene> prepare_scene(Scene scene, AccelKind accel) {
     for (const uint32_t v : t.v) corners.push_back(scene.positions[v]);
   traced->accel = build_accelerator(corners, accel);
   traced->lights = build_light_table(scene);
-  traced->diagonal = std::max(scene.bounds().diagonal(), 1e-6f);
+  const Box3 box = scene.bounds();
+  traced->diagonal = std::max(box.diagonal(), 1e-6f);
+  traced->lower = scene.triangles.empty() ? Vec3(0.0f) : box.lo;
   traced->scene = std::move(scene);
   return traced;
 }

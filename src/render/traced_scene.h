@@ -15,6 +15,7 @@ struct TracedScene {
   Accelerator accel;
   LightTable lights;
   float diagonal = 1.0f;  ///< bounding-box diagonal, the scale for default radii
+  Vec3 lower{0.0f};       ///< bounding-box corner of the smallest coordinates
 };
 
 /// Builds the acceleration structure of the chosen kind and the light table (the expensive step of opening a

@@ -41,8 +41,8 @@ std::vector<Row> make_rows() {
       rays, ray_slider));
   table.push_back(enum_row<ReuseMode>(
       "reuse",
-      "where L2 takes L1 at a bounce hit from: nowhere (recompute), this frame's "
-      "pixels, or their running average",
+      "where L2 takes L1 at a bounce hit from: nowhere (recompute), this frame's pixels, their running average, the "
+      "world-space L1 store, or the screen where it saw the hit and the store elsewhere",
       E::kRestart, kReuseModeNames, [](auto& s) -> auto& { return s.render.reuse; }));
   table.push_back(real_row(
       "recompute-ratio", "share of the L1 rays that recompute L1 where it cannot be reused", E::kRestart,
@@ -50,6 +50,17 @@ std::vector<Row> make_rows() {
   table.push_back(switch_row(
       "reuse-diffuse-only", "reuse only the view-independent part of L1 (no bias on glossy surfaces)", E::kRestart,
       [](auto& s) -> auto& { return s.render.reuse_diffuse_only; }, true));
+  Row cache_cells = real_row(
+      "cache-cell-pixels",
+      "the L1 store's cell size in pixels at the cell's distance, for the first 4 frames (halved per 4x frames)",
+      E::kRestart, [](auto& s) -> auto& { return s.render.cache_cell_pixels; }, {0.25, 1024}, SettingRange{1, 32});
+  cache_cells.always_described = false;
+  table.push_back(cache_cells);
+  Row cache_mb = integer_row("cache-mb", "the L1 store's memory cap in MiB (full: it stops taking new cells)",
+                             E::kRestart, [](auto& s) -> auto& { return s.render.cache_mb; }, {1, 1 << 20},
+                             SettingRange{16, 4096});
+  cache_mb.always_described = false;
+  table.push_back(cache_mb);
   table.push_back(integer_row(
       "ao-rays", "AO rays per pixel per frame", E::kRestart, [](auto& s) -> auto& { return s.render.ao_rays; }, rays,
       ray_slider));

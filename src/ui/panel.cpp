@@ -129,6 +129,10 @@ void sampling_section(PanelModel& m) {
   setting_slider("Recompute ratio", "recompute-ratio", r.recompute_ratio, "%.3f");
   ImGui::Checkbox("Reuse diffuse L1 only", &r.reuse_diffuse_only);
   setting_tooltip("reuse-diffuse-only");
+  if (uses_cache(r.reuse)) {
+    setting_slider("L1 store cell (pixels)", "cache-cell-pixels", r.cache_cell_pixels, "%.1f");
+    setting_slider("L1 store cap (MiB)", "cache-mb", r.cache_mb);
+  }
   setting_slider("AO rays", "ao-rays", r.ao_rays);
   ao_radius_widgets(m);
   ImGui::Checkbox("Smooth normals", &v.smooth_normals);  // the viewer prepares the scene again
@@ -168,9 +172,17 @@ void statistics_section(const PanelModel& m) {
               static_cast<unsigned long long>(s.frames));
   ImGui::Text("Elapsed %.2f s, last frame %.1f ms", s.seconds, 1e3 * s.last_frame_seconds);
   ImGui::Text("%.2f Mrays/s", s.mrays_per_second());
-  if (s.l2_bounce_hits > 0)
-    ImGui::Text("L2: %.1f%% of bounce hits reused L1",
-                100.0 * static_cast<double>(s.l2_reused) / static_cast<double>(s.l2_bounce_hits));
+  if (s.l2_bounce_hits > 0) {
+    const auto share = [&](uint64_t n) { return 100.0 * static_cast<double>(n) / static_cast<double>(s.l2_bounce_hits); };
+    ImGui::Text("L2: %.1f%% of bounce hits reused L1", share(s.l2_reused));
+    if (s.cache.bytes > 0) {
+      ImGui::Text("L1 store: %.1f%% of hits, %.1f%% recomputed", share(s.l2_cached),
+                  share(s.l2_bounce_hits - s.l2_reused - s.l2_cached));
+      ImGui::Text("L1 store: %llu cells, %.1f MiB%s", static_cast<unsigned long long>(s.cache.cells),
+                  static_cast<double>(s.cache.bytes) / (1 << 20), s.cache.full ? " (full)" : "");
+    }
+    ImGui::Text("L2 time %.2f s", s.l2_seconds);
+  }
   if (m.display_fps > 0.0) ImGui::Text("Display %.0f frames/s", m.display_fps);
 }
 

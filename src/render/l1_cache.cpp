@@ -1,0 +1,168 @@
+// The L1 store's cells, keys and shards.
+#include "render/l1_cache.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include "core/rng.h"
+
+namespace lueur {
+namespace {
+
+constexpr size_t kFirstShardCells = 1024;  // 32 KB per shard before the first growth
+
+/// A shard grows (doubles) once it is three-quarters full, and at its largest stops taking new cells there.
+bool over_load(uint64_t used, size_t capacity) { return 4 * used > 3 * static_cast<uint64_t>(capacity); }
+
+size_t shard_of(uint64_t hash) { return static_cast<size_t>(hash >> 60); }  // kShards == 16
+
+}  // namespace
+
+int L1CacheGrid::level_at(const Vec3& position) const {
+  // The distance, not the depth: bounce hits behind the camera need cells as well (of the size they would have in
+  // front of it).
+  const float distance = std::max(glm::length(position - eye), base_size);
+  const float size = cell_pixels * pixel_per_depth * distance * std::ldexp(1.0f, -generation);
+  const float levels = std::log2(std::max(size / base_size, 1.0f));
+  return std::clamp(static_cast<int>(std::lround(levels)), 0, 40);
+}
+
+float L1CacheGrid::size_of(int level) const { return std::ldexp(base_size, level); }
+
+L1CacheKey L1CacheGrid::key(const Vec3& position, const Vec3& normal, int level) const {
+  const float inv = 1.0f / size_of(level);
+  const Vec3 cell = glm::floor((position - origin) * inv);
+  // Surface points lie in the scene's box (cells past it by a jitter at most): far inside int32's range.
+  const auto coordinate = [](float c) {
+    return static_cast<int32_t>(std::clamp(c, -1073741824.0f, 1073741824.0f));
+  };
+  L1CacheKey k;
+  k.x = coordinate(cell.x);
+  k.y = coordinate(cell.y);
+  k.z = coordinate(cell.z);
+  k.level = static_cast<uint8_t>(level);
+  k.normal = normal_bucket(normal);
+  return k;
+}
+
+L1CacheGrid make_l1_cache_grid(const Camera& camera, const Vec3& lower, float diagonal, float cell_pixels,
+                               int generation) {
+  L1CacheGrid grid;
+  grid.origin = lower;
+  grid.base_size = std::max(diagonal, 1e-6f) * 0x1p-20f;
+  grid.eye = camera.eye;
+  grid.pixel_per_depth = 2.0f * camera.tan_half_fovy / static_cast<float>(std::max(camera.height, 1));
+  grid.cell_pixels = cell_pixels;
+  grid.generation = generation;
+  return grid;
+}
+
+L1CacheKey jittered_key(const L1CacheGrid& grid, const Vec3& position, const Vec3& normal, float u1, float u2) {
+  const int level = grid.level_at(position);
+  const float size = grid.size_of(level);
+  const Frame frame = Frame::from_normal(normal);
+  const Vec3 moved = position + ((u1 - 0.5f) * size) * frame.tangent + ((u2 - 0.5f) * size) * frame.bitangent;
+  return grid.key(moved, normal, level);
+}
+
+uint8_t normal_bucket(const Vec3& n) {
+  const Vec3 a = glm::abs(n);
+  const int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+  return static_cast<uint8_t>(2 * axis + (n[axis] < 0.0f ? 1 : 0));
+}
+
+uint64_t hash_of(const L1CacheKey& key) {
+  const uint64_t xy = (static_cast<uint64_t>(static_cast<uint32_t>(key.x)) << 32) | static_cast<uint32_t>(key.y);
+  const uint64_t z_rest = (static_cast<uint64_t>(static_cast<uint32_t>(key.z)) << 32) |
+                          (static_cast<uint64_t>(key.level) << 8) | key.normal;
+  return hash_combine(mix64(xy), z_rest);
+}
+
+int l1_cache_generation(uint64_t frame) {
+  int generation = 0;
+  for (uint64_t start = 4; frame >= start && generation < 30; start *= 4) ++generation;
+  return generation;
+}
+
+void L1Cache::reset(uint64_t max_bytes) {
+  const uint64_t cells = max_bytes / sizeof(L1CacheCell) / kShards;
+  max_cells_per_shard_ = cells == 0 ? 0 : std::bit_floor(static_cast<size_t>(cells));
+  clear();
+  generation = -1;
+}
+
+void L1Cache::clear() {
+  for (Shard& s : shards_) s = Shard{};
+}
+
+const L1CacheCell* L1Cache::find(const L1CacheKey& key, uint64_t hash) const {
+  const Shard& shard = shards_[shard_of(hash)];
+  if (shard.cells.empty()) return nullptr;
+  const size_t mask = shard.cells.size() - 1;
+  for (size_t slot = hash & mask;; slot = (slot + 1) & mask) {
+    const L1CacheCell& cell = shard.cells[slot];
+    if (cell.samples == 0) return nullptr;
+    if (cell.key == key) return &cell;
+  }
+}
+
+void L1Cache::rehash(Shard& shard, size_t capacity) {
+  std::vector<L1CacheCell> old = std::move(shard.cells);
+  shard.cells.assign(capacity, L1CacheCell{});
+  const size_t mask = capacity - 1;
+  for (const L1CacheCell& cell : old) {
+    if (cell.samples == 0) continue;
+    size_t slot = hash_of(cell.key) & mask;
+    while (shard.cells[slot].samples != 0) slot = (slot + 1) & mask;
+    shard.cells[slot] = cell;
+  }
+}
+
+void L1Cache::insert(Shard& shard, const L1CacheRecord& record) {
+  if (record.samples == 0 || max_cells_per_shard_ == 0) return;
+  if (shard.cells.empty()) rehash(shard, std::min(kFirstShardCells, max_cells_per_shard_));
+  size_t mask = shard.cells.size() - 1;
+  size_t slot = record.hash & mask;
+  for (; shard.cells[slot].samples != 0; slot = (slot + 1) & mask) {
+    if (shard.cells[slot].key == record.key) {
+      shard.cells[slot].sum += record.sum;
+      shard.cells[slot].samples += record.samples;
+      return;
+    }
+  }
+  // A new cell: grow first if the shard is getting full, or refuse it once the shard is as large as the cap allows.
+  if (over_load(shard.used + 1, shard.cells.size())) {
+    if (shard.cells.size() * 2 > max_cells_per_shard_) {
+      ++shard.refused;
+      return;
+    }
+    rehash(shard, shard.cells.size() * 2);
+    mask = shard.cells.size() - 1;
+    for (slot = record.hash & mask; shard.cells[slot].samples != 0;) slot = (slot + 1) & mask;
+  }
+  shard.cells[slot] = L1CacheCell{record.key, record.samples, record.sum};
+  ++shard.used;
+}
+
+void L1Cache::merge(const std::vector<std::vector<L1CacheRecord>>& batches, ThreadPool& pool) {
+  pool.parallel_for(kShards, [&](int s, int) {
+    Shard& shard = shards_[static_cast<size_t>(s)];
+    for (const std::vector<L1CacheRecord>& batch : batches)
+      for (const L1CacheRecord& r : batch)
+        if (shard_of(r.hash) == static_cast<size_t>(s)) insert(shard, r);
+  });
+}
+
+L1CacheStats L1Cache::stats() const {
+  L1CacheStats st;
+  for (const Shard& s : shards_) {
+    st.cells += s.used;
+    st.bytes += s.cells.capacity() * sizeof(L1CacheCell);
+    st.refused += s.refused;
+  }
+  st.full = st.refused > 0;
+  return st;
+}
+
+}  // namespace lueur

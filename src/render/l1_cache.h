@@ -1,0 +1,135 @@
+// A world-space store of L1 (the report's improvement II-B): a hashed grid of cells over the surfaces seen, each
+// the running sum of the light arriving there (L1 without the BRDF) that L1 estimates found, so that L2 can take
+// L1(q) where the screen never saw q. Cells are keyed by quantised position, size level and the normal's direction,
+// hold their full key (a collision is a different key, never a merge), and live in open-addressed shards that grow
+// with the surfaces seen up to a cap. A frame only reads the store; what it found is merged in at its end, in pixel
+// order, so that the image does not depend on the thread count. Depends on core and the thread pool.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/math.h"
+#include "core/rng.h"
+#include "render/camera.h"
+#include "render/thread_pool.h"
+
+namespace lueur {
+
+/// Which cell a surface point falls in.
+struct L1CacheKey {
+  int32_t x = 0, y = 0, z = 0;  ///< the position over the cell size, floored
+  uint8_t level = 0;            ///< the cell size is base_size x 2^level
+  uint8_t normal = 0;           ///< the normal's dominant axis and sign: 0..5 (+x -x +y -y +z -z)
+  uint16_t unused = 0;
+  bool operator==(const L1CacheKey&) const = default;
+};
+
+/// What a cell holds: the sum of the arriving light of every shadow-ray sample merged into it, and their count.
+struct L1CacheCell {
+  L1CacheKey key;
+  uint32_t samples = 0;  ///< 0: an empty slot
+  Vec3 sum{0.0f};
+};
+
+/// One L1 estimate on its way to the store: its cell, and its arriving light summed over its `samples` rays.
+struct L1CacheRecord {
+  L1CacheKey key;
+  uint64_t hash = 0;
+  Vec3 sum{0.0f};
+  uint32_t samples = 0;
+};
+
+/// How surface points map to cells: a size that covers `cell_pixels` pixels at the point's distance from the camera
+/// (as wide as that many pixels would be at that depth straight ahead),
+/// rounded to a power of two of `base_size` (so that neighbouring points of a surface mostly share a level), and
+/// halved per `generation`.
+struct L1CacheGrid {
+  Vec3 origin{0.0f};       ///< the scene's bounding box corner: cell coordinates count from there
+  float base_size = 1.0f;  ///< the smallest cell: the scene's diagonal / 2^20
+  Vec3 eye{0.0f};
+  float pixel_per_depth = 1.0f;  ///< a pixel's width at unit depth
+  float cell_pixels = 8.0f;
+  int generation = 0;
+
+  /// The cell level at `position`, and the size of its cells.
+  int level_at(const Vec3& position) const;
+  float size_of(int level) const;
+  /// The key of the cell of `level` that holds `position`, on the side `normal` faces.
+  L1CacheKey key(const Vec3& position, const Vec3& normal, int level) const;
+};
+
+/// The grid of a frame: cells of `cell_pixels` pixels at their distance from `camera`, halved `generation` times,
+/// counted from the scene's corner `lower` in powers of two of its `diagonal` / 2^20.
+L1CacheGrid make_l1_cache_grid(const Camera& camera, const Vec3& lower, float diagonal, float cell_pixels,
+                               int generation);
+
+/// The key of a jittered look-up or feed at a surface point: the position moved uniformly across one cell, in the
+/// plane of its normal (u1, u2 in [0, 1)), so that the grid shows as noise rather than as blocks (Binder, Fricke and
+/// Keller 2018). The level is that of the point itself.
+L1CacheKey jittered_key(const L1CacheGrid& grid, const Vec3& position, const Vec3& normal, float u1, float u2);
+
+/// A cell serves look-ups once it holds this many samples of arriving light (below, L1 is traced and added to it).
+inline constexpr uint32_t kL1CacheMinSamples = 64;
+
+/// The normal's dominant axis and sign, 0..5: surfaces that face apart (the two sides of a wall; a floor and the wall
+/// beside it) never share a cell.
+uint8_t normal_bucket(const Vec3& normal);
+
+uint64_t hash_of(const L1CacheKey& key);
+
+/// The generation of frame `frame`: 0 for frames 0-3, then one more per 4x frames (4-15, 16-63, ...). Each halves the
+/// cells' size, so that the store's blur shrinks to nothing as the frames accumulate.
+int l1_cache_generation(uint64_t frame);
+
+struct L1CacheStats {
+  uint64_t cells = 0;         ///< cells in use
+  uint64_t bytes = 0;         ///< memory held by the shards
+  uint64_t refused = 0;       ///< records of new cells dropped because the store had reached its cap (this generation)
+  bool full = false;          ///< the cap has been reached
+};
+
+class L1Cache;
+
+/// What one pixel's L2 needs of the store in a frame: the store as the previous frame left it, the frame's grid,
+/// the pixel's jitter numbers, and where its new L1 estimates go.
+struct L1CacheAccess {
+  const L1Cache* store = nullptr;
+  const L1CacheGrid* grid = nullptr;
+  Pcg32* jitter = nullptr;
+  std::vector<L1CacheRecord>* records = nullptr;
+};
+
+class L1Cache {
+ public:
+  static constexpr int kShards = 16;
+
+  /// Empties the store and sets its cap (0: the store stays empty and refuses everything).
+  void reset(uint64_t max_bytes);
+  /// Empties the store, keeping its cap.
+  void clear();
+
+  /// The cell with this key, or null.
+  const L1CacheCell* find(const L1CacheKey& key, uint64_t hash) const;
+
+  /// Adds the records, batch after batch and each batch in order; one shard per task on `pool`.
+  void merge(const std::vector<std::vector<L1CacheRecord>>& batches, ThreadPool& pool);
+
+  L1CacheStats stats() const;
+  int generation = -1;  ///< the generation whose cells the store holds (-1: none yet)
+
+ private:
+  struct Shard {
+    std::vector<L1CacheCell> cells;  ///< a power of two slots, or none
+    uint64_t used = 0;
+    uint64_t refused = 0;
+  };
+  void insert(Shard& shard, const L1CacheRecord& record);
+  static void rehash(Shard& shard, size_t capacity);
+
+  std::array<Shard, kShards> shards_;
+  size_t max_cells_per_shard_ = 0;
+};
+
+}  // namespace lueur

@@ -1,0 +1,164 @@
+// The world-space L1 store (issue 19): its keys keep apart what must not mix, its table never merges two keys and
+// respects its cap, its cells shrink as frames accumulate, and a render with it stays a pure function of the
+// settings whatever the thread count.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "render/l1_cache.h"
+#include "render/renderer.h"
+#include "scene/default_scene.h"
+#include "test_support.h"
+
+namespace lueur {
+namespace {
+
+L1CacheGrid test_grid(int generation = 0) {
+  Camera camera = make_camera(CameraSpec{Vec3(0.0f, 0.0f, 5.0f), Vec3(0.0f), Vec3(0, 1, 0), 60.0f}, 64, 64);
+  return make_l1_cache_grid(camera, Vec3(-1.0f), 2.0f * std::sqrt(3.0f), 8.0f, generation);
+}
+
+L1CacheRecord record_of(const L1CacheKey& key, float value, uint32_t samples) {
+  return L1CacheRecord{key, hash_of(key), Vec3(value * static_cast<float>(samples)), samples};
+}
+
+TEST(L1CacheKeys, TheTwoSidesOfAThinWallNeverShareACell) {
+  const L1CacheGrid grid = test_grid();
+  Pcg32 rng(7, 1);
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 p(rng.next_float() * 2 - 1, rng.next_float() * 2 - 1, 0.0f);
+    const Vec3 n(0.0f, 0.0f, 1.0f);
+    const float u1 = rng.next_float(), u2 = rng.next_float();
+    // The same jitter on both sides: only the side differs.
+    EXPECT_FALSE(jittered_key(grid, p, n, u1, u2) == jittered_key(grid, p, -n, u1, u2)) << i;
+  }
+}
+
+TEST(L1CacheKeys, AFloorAndTheWallBesideItNeverShareACell) {
+  const L1CacheGrid grid = test_grid();
+  const Vec3 corner(0.3f, -0.2f, 0.1f);
+  const int level = grid.level_at(corner);
+  EXPECT_FALSE(grid.key(corner, Vec3(0, 1, 0), level) == grid.key(corner, Vec3(1, 0, 0), level));
+  for (int bucket = 0; bucket < 6; ++bucket) {
+    Vec3 n(0.0f);
+    n[bucket / 2] = bucket % 2 ? -1.0f : 1.0f;
+    EXPECT_EQ(normal_bucket(n), bucket);
+  }
+}
+
+TEST(L1CacheKeys, CellsCoverAboutTheSamePixelsEverywhereAndHalvePerGeneration) {
+  const L1CacheGrid g0 = test_grid(0), g1 = test_grid(1), g3 = test_grid(3);
+  // Twice as far: cells one level (twice) larger.
+  EXPECT_EQ(g0.level_at(Vec3(0.0f, 0.0f, -3.0f)), g0.level_at(Vec3(0.0f, 0.0f, 1.0f)) + 1);
+  // A cell of 8 pixels at the point's depth, to within the rounding to a power of two.
+  const Vec3 p(0.0f, 0.0f, 1.0f);
+  const float pixel = g0.pixel_per_depth * 4.0f;  // depth 4
+  const float size = g0.size_of(g0.level_at(p));
+  EXPECT_GT(size, 8.0f * pixel / std::sqrt(2.0f));
+  EXPECT_LT(size, 8.0f * pixel * std::sqrt(2.0f));
+  EXPECT_EQ(g1.level_at(p), g0.level_at(p) - 1);
+  EXPECT_EQ(g3.level_at(p), g0.level_at(p) - 3);
+  EXPECT_EQ(l1_cache_generation(0), 0);
+  EXPECT_EQ(l1_cache_generation(3), 0);
+  EXPECT_EQ(l1_cache_generation(4), 1);
+  EXPECT_EQ(l1_cache_generation(15), 1);
+  EXPECT_EQ(l1_cache_generation(16), 2);
+  EXPECT_EQ(l1_cache_generation(64), 3);
+}
+
+TEST(L1CacheTable, NeverMergesTwoKeysAndFindsEachOneItsOwnSum) {
+  L1Cache cache;
+  cache.reset(1u << 20);
+  ThreadPool pool(2);
+  std::vector<std::vector<L1CacheRecord>> batches(3);
+  for (int i = 0; i < 3000; ++i) {
+    L1CacheKey key;
+    key.x = i % 17;
+    key.y = i / 17;
+    key.z = -i;
+    key.normal = static_cast<uint8_t>(i % 6);
+    batches[static_cast<size_t>(i % 3)].push_back(record_of(key, static_cast<float>(i), 2));
+    batches[static_cast<size_t>((i + 1) % 3)].push_back(record_of(key, static_cast<float>(i), 1));
+  }
+  cache.merge(batches, pool);
+  EXPECT_EQ(cache.stats().cells, 3000u);
+  EXPECT_FALSE(cache.stats().full);
+  for (int i = 0; i < 3000; ++i) {
+    L1CacheKey key;
+    key.x = i % 17;
+    key.y = i / 17;
+    key.z = -i;
+    key.normal = static_cast<uint8_t>(i % 6);
+    const L1CacheCell* cell = cache.find(key, hash_of(key));
+    ASSERT_NE(cell, nullptr) << i;
+    EXPECT_EQ(cell->samples, 3u);
+    EXPECT_FLOAT_EQ(cell->sum.r / 3.0f, static_cast<float>(i));
+    key.level = 1;  // the same place one level up: another cell, never stored
+    EXPECT_EQ(cache.find(key, hash_of(key)), nullptr);
+  }
+}
+
+TEST(L1CacheTable, StopsTakingNewCellsAtItsCapAndSaysSo) {
+  L1Cache cache;
+  cache.reset(64 * 1024);  // 2048 cells, 128 per shard
+  ThreadPool pool(1);
+  std::vector<std::vector<L1CacheRecord>> batches(1);
+  for (int i = 0; i < 10000; ++i) {
+    L1CacheKey key;
+    key.x = i;
+    batches[0].push_back(record_of(key, 1.0f, 1));
+  }
+  cache.merge(batches, pool);
+  const L1CacheStats stats = cache.stats();
+  EXPECT_TRUE(stats.full);
+  EXPECT_GT(stats.refused, 0u);
+  EXPECT_LE(stats.bytes, 64u * 1024u);
+  EXPECT_LE(stats.cells, 2048u);
+  EXPECT_EQ(stats.cells + stats.refused, 10000u);
+  // No room at all: nothing is stored.
+  cache.reset(0);
+  cache.merge(batches, pool);
+  EXPECT_EQ(cache.stats().cells, 0u);
+}
+
+Film render_default_scene(RenderSettings settings, int frames, int threads) {
+  Scene scene = make_default_scene();
+  compute_smooth_normals(scene);
+  const auto traced = prepare_scene(std::move(scene));
+  Film film;
+  film.reset(settings);
+  ThreadPool pool(threads);
+  const Camera camera = make_camera(default_scene_camera(), settings.width, settings.height);
+  for (int f = 0; f < frames; ++f) render_frame(*traced, camera, settings, film, pool);
+  return film;
+}
+
+TEST(L1CacheRender, BitIdenticalForAnyThreadCountAcrossAGeneration) {
+  for (const ReuseMode mode : {ReuseMode::kCache, ReuseMode::kScreenCache}) {
+    RenderSettings settings;
+    settings.width = 45;  // not a multiple of the tile size
+    settings.height = 38;
+    settings.l1_rays = 8;
+    settings.l2_rays = 8;
+    settings.reuse = mode;
+    settings.cache_cell_pixels = 4.0f;
+    const Film one = render_default_scene(settings, 6, 1);  // frames 0-3 and 4-5: two generations
+    const Film three = render_default_scene(settings, 6, 3);
+    EXPECT_EQ(one.l1_cache.stats().cells, three.l1_cache.stats().cells);
+    EXPECT_GT(one.l1_cache.stats().cells, 0u);
+    for (int l = 0; l < kLayerCount; ++l) {
+      const auto& a = one.sums[static_cast<size_t>(l)];
+      const auto& b = three.sums[static_cast<size_t>(l)];
+      ASSERT_EQ(a.size(), b.size()) << kLayerNames[static_cast<size_t>(l)];
+      EXPECT_TRUE(a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0)
+          << kLayerNames[static_cast<size_t>(l)];
+    }
+    // The store served some bounce hits: its layer is not black.
+    double cached = 0.0;
+    for (const float v : one.sums[static_cast<size_t>(Layer::kL2Cached)]) cached += v;
+    EXPECT_GT(cached, 0.0);
+  }
+}
+
+}  // namespace
+}  // namespace lueur
