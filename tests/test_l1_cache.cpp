@@ -121,6 +121,61 @@ TEST(L1CacheTable, StopsTakingNewCellsAtItsCapAndSaysSo) {
   EXPECT_EQ(cache.stats().cells, 0u);
 }
 
+/// The store fed, frame after frame, by jittered samples of a light that steps from 0 to 1 across x = 0 on the plane
+/// z = 0 (a hard shadow edge), and looked up just on the dark side: what a look-up there gives, averaged over the
+/// frames 0..frames-1 (each frame reading the store as the frames before it left it, as the renderer does).
+double dark_side_blur(int frames) {
+  const Vec3 normal(0.0f, 0.0f, 1.0f);
+  L1Cache cache;
+  cache.reset(64u << 20);
+  ThreadPool pool(2);
+  Pcg32 rng(11, 3);
+  double sum = 0.0;
+  int lookups = 0;
+  for (int frame = 0; frame < frames; ++frame) {
+    const int generation = l1_cache_generation(static_cast<uint64_t>(frame));
+    if (cache.generation != generation) {
+      cache.clear();
+      cache.generation = generation;
+    }
+    const L1CacheGrid grid = test_grid(generation);
+    // Look-ups on the dark side, within 3 pixel footprints of the edge (a footprint at depth 5 is 5 x pixel_per_depth).
+    const float footprint = 5.0f * grid.pixel_per_depth;
+    for (int i = 0; i < 400; ++i) {
+      const Vec3 p(-3.0f * footprint * rng.next_float(), rng.next_float() - 0.5f, 0.0f);
+      const L1CacheKey key = jittered_key(grid, p, normal, rng.next_float(), rng.next_float());
+      const L1CacheCell* cell = cache.find(key, hash_of(key));
+      // A cell not ready yet means a recomputed, unbiased value: 0 here.
+      sum += cell && cell->samples >= kL1CacheMinSamples ? cell->sum.r / static_cast<float>(cell->samples) : 0.0;
+      ++lookups;
+    }
+    std::vector<std::vector<L1CacheRecord>> batch(1);
+    for (int i = 0; i < 20000; ++i) {
+      const Vec3 p(rng.next_float() * 0.4f - 0.2f, rng.next_float() - 0.5f, 0.0f);
+      const L1CacheKey key = jittered_key(grid, p, normal, rng.next_float(), rng.next_float());
+      batch[0].push_back(record_of(key, p.x > 0.0f ? 1.0f : 0.0f, 4));
+    }
+    cache.merge(batch, pool);
+  }
+  return sum / lookups;
+}
+
+TEST(L1CacheConsistency, TheBlurAtAShadowEdgeShrinksAsFramesAccumulate) {
+  // The light on the dark side that the store lends from the lit side: its bias there.
+  const double after_4 = dark_side_blur(4), after_16 = dark_side_blur(16), after_64 = dark_side_blur(64),
+               after_256 = dark_side_blur(256);
+  std::printf("dark-side blur after 4, 16, 64, 256 frames: %.4f %.4f %.4f %.4f\n", after_4, after_16, after_64,
+              after_256);
+  EXPECT_GT(after_4, 0.05);  // cells of 8 pixels do blur a 3-pixel band
+  EXPECT_LT(after_16, after_4);
+  EXPECT_LT(after_64, after_16);
+  EXPECT_LT(after_256, after_64);
+  // Each frame's blur halves per generation, and the early frames' weight in the average falls as 1 / frames: the
+  // average's bias tends to halving per 4x frames.
+  EXPECT_LT(after_256, 0.75 * after_64);
+  EXPECT_LT(after_256, 0.5 * after_4);
+}
+
 Film render_default_scene(RenderSettings settings, int frames, int threads) {
   Scene scene = make_default_scene();
   compute_smooth_normals(scene);
