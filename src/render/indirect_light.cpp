@@ -22,6 +22,10 @@ struct PendingBounce {
   Vec3 q_position{0.0f};
   uint64_t sample = 0;
   int pixel = -1;  ///< the screen pixel q projects to, or -1 (or no reuse)
+  bool keyed = false;  ///< q is bound for the L1 store: `surface`, `key` and `hash` are set and the cell prefetched
+  SurfacePoint surface;
+  L1CacheKey key;
+  uint64_t hash = 0;
 };
 
 /// Room for a batch of pending bounces, left unconstructed (each is written whole before it is read): constructing
@@ -109,15 +113,22 @@ void ScreenBuffer::resize(int w, int h) {
 
 namespace {
 
+/// Sets `b`'s surface point and jittered cell, and starts loading the cell's slot.
+void key_for_store(const Scene& scene, const L1CacheAccess& cache, PendingBounce& b) {
+  b.surface = make_surface_point(scene, b.ray, b.hit);
+  const float u1 = cache.jitter->next_float(), u2 = cache.jitter->next_float();
+  b.key = jittered_key(*cache.grid, b.surface.position, b.surface.geometric_normal, u1, u2);
+  b.hash = hash_of(b.key);
+  b.keyed = true;
+  cache.store->prefetch(b.hash);
+}
+
 /// L1(q) toward p from the L1 store where q's jittered cell is ready (returns true), otherwise traced anew and
 /// recorded for the store (returns false). From the store: the BRDF's constant part times the cell's arriving light,
 /// plus whatever the BRDF has beyond it, traced toward p.
-bool l1_from_store(const TracedScene& traced, const SurfacePoint& q, const RenderSettings& settings,
-                   const DirectLightOptions& recompute, const L1CacheAccess& cache, PixelSampler& sampler,
-                   uint64_t first_shadow_sample, uint64_t& rays_traced, Vec3& l1_q) {
-  const float u1 = cache.jitter->next_float(), u2 = cache.jitter->next_float();
-  const L1CacheKey key = jittered_key(*cache.grid, q.position, q.geometric_normal, u1, u2);
-  const uint64_t hash = hash_of(key);
+bool l1_from_store(const TracedScene& traced, const SurfacePoint& q, const L1CacheKey& key, uint64_t hash,
+                   const RenderSettings& settings, const DirectLightOptions& recompute, const L1CacheAccess& cache,
+                   PixelSampler& sampler, uint64_t first_shadow_sample, uint64_t& rays_traced, Vec3& l1_q) {
   const L1CacheCell* cell = cache.store->find(key, hash);
   if (cell && cell->samples >= kL1CacheMinSamples) {
     const Vec3 arriving = cell->sum / static_cast<float>(cell->samples);
@@ -184,13 +195,20 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
         __builtin_prefetch(&screen.triangle[static_cast<size_t>(pixel)]);
         __builtin_prefetch(&screen.pixels[static_cast<size_t>(pixel)]);
       }
-      pending.items[static_cast<size_t>(pending_count)] =
-          PendingBounce{ray, hit, q, first_sample + static_cast<uint64_t>(batch_start) + k, pixel};
+      PendingBounce& b = pending.items[static_cast<size_t>(pending_count)];
+      b.ray = ray;
+      b.hit = hit;
+      b.q_position = q;
+      b.sample = first_sample + static_cast<uint64_t>(batch_start) + k;
+      b.pixel = pixel;
+      b.keyed = false;  // the rest is written only when set
+      // Where the screen cannot serve q, the store will be asked: its cell's load starts now.
+      if (cache && pixel < 0) key_for_store(scene, *cache, b);
       ++pending_count;
     }
 
     for (int k = 0; k < pending_count; ++k) {
-      const PendingBounce& b = pending.items[static_cast<size_t>(k)];
+      PendingBounce& b = pending.items[static_cast<size_t>(k)];
       ++result.bounce_hits;
       const uint64_t first_shadow_sample = b.sample * static_cast<uint64_t>(recompute.rays);
       // L1(q) toward p: from the screen where the camera saw q, otherwise traced anew.
@@ -216,12 +234,14 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
       }
       bool cached = false;
       if (!reused) {
-        const SurfacePoint q = make_surface_point(scene, b.ray, b.hit);
-        if (cache)
-          cached = l1_from_store(traced, q, settings, recompute, *cache, recompute_sampler, first_shadow_sample,
-                                 rays_traced, l1_q);
-        else
-          l1_q = estimate_direct_light(traced, q, recompute, recompute_sampler, first_shadow_sample, rays_traced);
+        if (cache) {
+          if (!b.keyed) key_for_store(scene, *cache, b);
+          cached = l1_from_store(traced, b.surface, b.key, b.hash, settings, recompute, *cache, recompute_sampler,
+                                 first_shadow_sample, rays_traced, l1_q);
+        } else {
+          l1_q = estimate_direct_light(traced, make_surface_point(scene, b.ray, b.hit), recompute, recompute_sampler,
+                                       first_shadow_sample, rays_traced);
+        }
       }
 
       // f cos / pdf with pdf = cos / pi.
