@@ -91,6 +91,28 @@ TEST(Bench, SmokeRunWritesTheIssuesJsonSchema) {
   }
 }
 
+TEST(Bench, StoreSectionRacesTheReuseModesAgainstAnUnbiasedReference) {
+  const nlohmann::json j = smoke_run_json("--sections store");
+  const auto& store = j["store"];
+  ASSERT_EQ(store.size(), 4u);  // the smoke run has the default scene only
+  std::set<std::string> modes;
+  for (const auto& e : store) {
+    EXPECT_EQ(e["scene"], "default");
+    modes.insert(e["reuse"].get<std::string>());
+    EXPECT_GE(e["frames"].get<int>(), 1);
+    EXPECT_GT(e["l2_rmse"].get<double>(), 0.0);
+    EXPECT_GT(e["image_rmse"].get<double>(), 0.0);
+    EXPECT_TRUE(e["seconds_to_frame_l2_rmse"].is_null() || e["seconds_to_frame_l2_rmse"].get<double>() >= 0.0);
+    if (e["reuse"] == "frame") {
+      EXPECT_FALSE(e["seconds_to_frame_l2_rmse"].is_null());  // it reaches its own error
+    }
+    if (e["reuse"] == "cache" || e["reuse"] == "screen+cache") {
+      EXPECT_GT(e["cache_cells"].get<int>(), 0);
+    }
+  }
+  EXPECT_EQ(modes, (std::set<std::string>{"off", "frame", "cache", "screen+cache"}));
+}
+
 TEST(Bench, TraversalSectionCountsLueursWorkPerRay) {
   const nlohmann::json j = smoke_run_json("--sections traversal");
   ASSERT_TRUE(j.is_object());

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "bench/bench_convergence.h"
+#include "bench/bench_store.h"
 #include "bench/bench_frame.h"
 #include "bench/bench_rays.h"
 #include "bench/bench_scenes.h"
@@ -39,6 +40,7 @@ struct BenchOptions {
   double frame_seconds = 5.0;  ///< the renderer's frames per scene and thread count, over all rounds (section frame)
   TimingOptions timing;
   ConvergenceOptions convergence;
+  StoreOptions store;
 };
 
 struct UsageError : std::runtime_error {
@@ -50,7 +52,8 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
   CLI::App app{"lueur-bench: Lueur's BVH against Embree on the same rays, and time to quality", "lueur-bench"};
   std::string sections;
   int reference_frames = 0, convergence_size = 0;
-  double convergence_seconds = 0.0;
+  double convergence_seconds = 0.0, store_seconds = 0.0, store_reference_seconds = 0.0;
+  int store_size = 0;
   app.add_flag("--quick", o.quick, "a reduced set that runs in under a minute");
   app.add_flag("--smoke", o.smoke, "a tiny run that only checks the plumbing (seconds; for the test suite)");
   app.add_option("--json", o.json_path, "write every figure to FILE as JSON");
@@ -60,7 +63,15 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
       ->check(CLI::Range(1, 1000));
   app.add_option("--sections", sections,
                  "comma-separated: build,throughput,convergence (default), traversal (nodes per ray), frame (the "
-                 "renderer's rays per second against the same rays in the benchmark's arrays)");
+                 "renderer's rays per second against the same rays in the benchmark's arrays), store (the reuse "
+                 "modes and the L1 store raced on the default scene and the conference room)");
+  app.add_option("--store-seconds", store_seconds, "equal time per reuse mode in section store (default 60)")
+      ->check(CLI::Range(0.001, 100000.0));
+  app.add_option("--store-reference-seconds", store_reference_seconds,
+                 "time of each reference in section store (default 240)")
+      ->check(CLI::Range(0.001, 100000.0));
+  app.add_option("--store-size", store_size, "image side in pixels in section store (default 256)")
+      ->check(CLI::Range(8, 8192));
   app.add_option("--reference-frames", reference_frames, "frames of each convergence reference (default 128)")
       ->check(CLI::Range(1, 100000));
   app.add_option("--convergence-seconds", convergence_seconds, "equal time per convergence variant (default 20)")
@@ -82,8 +93,10 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
     std::istringstream in(sections);
     std::string name;
     while (std::getline(in, name, ',')) {
-      if (name != "build" && name != "throughput" && name != "traversal" && name != "convergence" && name != "frame")
-        throw UsageError("--sections: '" + name + "' is not one of build|throughput|traversal|convergence|frame");
+      if (name != "build" && name != "throughput" && name != "traversal" && name != "convergence" && name != "frame" &&
+          name != "store")
+        throw UsageError("--sections: '" + name +
+                         "' is not one of build|throughput|traversal|convergence|frame|store");
       o.sections.insert(name);
     }
   }
@@ -92,18 +105,23 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
     o.frame_seconds = 0.5;
     o.timing = {0.1, 3};
     o.convergence = {128, 128, 32, 1.5, 0, 1};
+    o.store = {128, 5.0, 20.0, 0};
   }
   if (o.smoke) {
     o.ray_size = 24;
     o.frame_seconds = 0.0;
     o.timing = {0.001, 1};
     o.convergence = {16, 16, 2, 0.001, 0, 1};
+    o.store = {16, 0.02, 0.05, 0};
     o.scenes_dir.clear();
   }
   if (o.rounds > 0) o.timing.rounds = o.rounds;
   if (reference_frames > 0) o.convergence.reference_frames = reference_frames;
   if (convergence_seconds > 0.0) o.convergence.seconds = convergence_seconds;
   if (convergence_size > 0) o.convergence.width = o.convergence.height = convergence_size;
+  if (store_seconds > 0.0) o.store.seconds = store_seconds;
+  if (store_reference_seconds > 0.0) o.store.reference_seconds = store_reference_seconds;
+  if (store_size > 0) o.store.size = store_size;
   if (!o.json_path.empty()) {
     std::filesystem::path dir = std::filesystem::path(o.json_path).parent_path();
     if (dir.empty()) dir = ".";
@@ -242,11 +260,21 @@ int run(const BenchOptions& o) {
     }
   }
   if (o.sections.count("convergence")) convergence = run_convergence(o.convergence, stderr);
+  Json store = Json::array();
+  if (o.sections.count("store")) {
+    std::vector<std::string> skipped;
+    std::vector<BenchScene> scenes = load_bench_scenes(o.quick || o.smoke, o.scenes_dir, skipped);
+    if (!o.only.empty())
+      std::erase_if(scenes, [&](const BenchScene& b) { return b.name.find(o.only) == std::string::npos; });
+    for (const std::string& s : skipped) std::fprintf(stderr, "lueur-bench: skipped %s\n", s.c_str());
+    store = run_store_comparison(scenes, o.store, stderr);
+  }
 
   if (!o.json_path.empty()) {
     Json out{{"results", results}, {"build", builds}, {"convergence", convergence}};
     if (o.sections.count("traversal")) out["traversal"] = traversal;
     if (o.sections.count("frame")) out["frames"] = frames;
+    if (o.sections.count("store")) out["store"] = store;
     write_file_atomically(o.json_path, out.dump(2) + "\n");
     std::printf("%s\n", o.json_path.c_str());
   }

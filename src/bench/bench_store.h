@@ -1,0 +1,26 @@
+// The L1 store against screen-space reuse (issue 19): on the default scene and the conference room (camera inside),
+// each reuse mode renders for the same time, its L2 and image error against a long `--reuse off` reference are
+// followed frame by frame, and the time each mode takes to reach the L2 error that `frame` reaches at the end is
+// read off those curves. Depends on the renderer and the benchmark scenes.
+#pragma once
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "bench/bench_scenes.h"
+
+namespace lueur::bench {
+
+struct StoreOptions {
+  int size = 256;                    ///< square images
+  double seconds = 60.0;             ///< the equal time each mode gets
+  double reference_seconds = 240.0;  ///< the reference (`off`, another seed) renders at least this long
+  int threads = 0;                   ///< 0: all
+};
+
+/// One JSON object per scene and mode. Progress goes to `log`.
+nlohmann::ordered_json run_store_comparison(std::vector<BenchScene>& scenes, const StoreOptions& options,
+                                            std::FILE* log);
+
+}  // namespace lueur::bench
