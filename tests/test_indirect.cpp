@@ -85,8 +85,9 @@ TEST_P(ClosedBoxL2, IsRhoSquaredLeAtEveryPixel) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Reuse, ClosedBoxL2, ::testing::Values(ReuseMode::kOff, ReuseMode::kFrame, ReuseMode::kAverage,
-                                                           ReuseMode::kCache, ReuseMode::kScreenCache),
+INSTANTIATE_TEST_SUITE_P(Reuse, ClosedBoxL2,
+                         ::testing::Values(ReuseMode::kOff, ReuseMode::kFrame, ReuseMode::kAverage, ReuseMode::kCache,
+                                           ReuseMode::kScreenCache),
                          [](const auto& param_info) {
                            std::string name(kReuseModeNames[static_cast<size_t>(param_info.param)]);
                            std::replace(name.begin(), name.end(), '+', '_');  // test names: letters, digits, _

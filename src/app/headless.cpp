@@ -159,7 +159,8 @@ int run_headless(const AppOptions& options) {
                  "(a scene of extreme scale or emission)\n",
                  static_cast<unsigned long long>(dropped));
   if (options.gl != HeadlessGl::kNone) {
-    write_gl_screenshot(options, described, film, traced, {elapsed, rays, l2_seconds, bounce_hits, reused, cached, cache});
+    write_gl_screenshot(options, described, film, traced,
+                        {elapsed, rays, l2_seconds, bounce_hits, reused, cached, cache});
   } else {
     // The EXR holds every rendered layer; PNG and PFM show the combined image or the chosen --view.
     write_image(options.out_path, shown_image(film, settings.enabled, options.settings.weights, layer),

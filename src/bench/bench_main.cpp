@@ -11,10 +11,10 @@
 #include <sstream>
 
 #include "bench/bench_convergence.h"
-#include "bench/bench_store.h"
 #include "bench/bench_frame.h"
 #include "bench/bench_rays.h"
 #include "bench/bench_scenes.h"
+#include "bench/bench_store.h"
 #include "bench/bench_throughput.h"
 #include "core/atomic_file.h"
 #include "scene/obj_loader.h"
@@ -95,8 +95,7 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
     while (std::getline(in, name, ',')) {
       if (name != "build" && name != "throughput" && name != "traversal" && name != "convergence" && name != "frame" &&
           name != "store")
-        throw UsageError("--sections: '" + name +
-                         "' is not one of build|throughput|traversal|convergence|frame|store");
+        throw UsageError("--sections: '" + name + "' is not one of build|throughput|traversal|convergence|frame|store");
       o.sections.insert(name);
     }
   }

@@ -116,9 +116,8 @@ Json run_store_comparison(std::vector<BenchScene>& scenes, const StoreOptions& o
       std::fprintf(log,
                    "lueur-bench: store %-10s %-13s %5llu frames in %5.1f s: L2 RMSE %.6f, image RMSE %.6f; "
                    "frame's L2 error (%.6f) reached %s\n",
-                   b.name.c_str(), mode.c_str(), static_cast<unsigned long long>(r.film.frames), end.seconds,
-                   end.l2, end.image, frame_l2,
-                   reach ? (std::to_string(*reach).substr(0, 6) + " s").c_str() : "never");
+                   b.name.c_str(), mode.c_str(), static_cast<unsigned long long>(r.film.frames), end.seconds, end.l2,
+                   end.image, frame_l2, reach ? (std::to_string(*reach).substr(0, 6) + " s").c_str() : "never");
     }
   }
   return results;

@@ -47,9 +47,9 @@ Vec3 sample_emitter(const TracedScene& traced, const SurfacePoint& sp, uint32_t 
 /// arithmetic operation for operation (the same bytes), lane by lane and without branches.
 struct PlacedLightSamples {
   using Lanes = std::array<float, kSampleBatch>;
-  Lanes u1, u2;                                   // the point's numbers
+  Lanes u1, u2;                                       // the point's numbers
   Lanes p0x, p0y, p0z, p1x, p1y, p1z, p2x, p2y, p2z;  // the chosen emitter's corners
-  Lanes nx, ny, nz, area, pmf;                    // its normal, area and probability of being chosen
+  Lanes nx, ny, nz, area, pmf;                        // its normal, area and probability of being chosen
   std::array<uint32_t, kSampleBatch> light;
   Lanes wi_x, wi_y, wi_z;  // unit direction to the point
   Lanes to_x, to_y, to_z;  // from the shadow ray's origin to the point
@@ -79,8 +79,7 @@ struct PlacedLightSamples {
       const float wx = tx * inv_distance, wy = ty * inv_distance, wz = tz * inv_distance;
       const float cos_light = -(nx[k] * wx + ny[k] * wy + nz[k] * wz);
       const float cos_surface = sp.shading_normal.x * wx + sp.shading_normal.y * wy + sp.shading_normal.z * wz;
-      const float cos_geometric =
-          sp.geometric_normal.x * wx + sp.geometric_normal.y * wy + sp.geometric_normal.z * wz;
+      const float cos_geometric = sp.geometric_normal.x * wx + sp.geometric_normal.y * wy + sp.geometric_normal.z * wz;
       // Non-short-circuit tests, and the division made whatever the outcome: no branch in the loop.
       const bool lit = (distance2 > 0.0f) & (cos_light > 0.0f) & !(cos_surface <= 0.0f) & !(cos_geometric <= 0.0f);
       const float unoccluded_scale = cos_surface * cos_light * area[k] / distance2;

@@ -21,7 +21,7 @@ struct PendingBounce {
   Hit hit;
   Vec3 q_position{0.0f};
   uint64_t sample = 0;
-  int pixel = -1;  ///< the screen pixel q projects to, or -1 (or no reuse)
+  int pixel = -1;      ///< the screen pixel q projects to, or -1 (or no reuse)
   bool keyed = false;  ///< q is bound for the L1 store: `surface`, `key` and `hash` are set and the cell prefetched
   SurfacePoint surface;
   L1CacheKey key;
@@ -90,7 +90,8 @@ struct BounceDirections {
       x[k] = local.x * t.x + local.y * b.x + local.z * n.x;
       y[k] = local.x * t.y + local.y * b.y + local.z * n.y;
       z[k] = local.x * t.z + local.y * b.z + local.z * n.z;
-      open[k] = (local.z > 0.0f) & (x[k] * geometric_normal.x + y[k] * geometric_normal.y + z[k] * geometric_normal.z > 0.0f);
+      open[k] =
+          (local.z > 0.0f) & (x[k] * geometric_normal.x + y[k] * geometric_normal.y + z[k] * geometric_normal.z > 0.0f);
     }
   }
 };

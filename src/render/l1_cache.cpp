@@ -36,9 +36,7 @@ L1CacheKey L1CacheGrid::key(const Vec3& position, const Vec3& normal, int level)
   const float inv = 1.0f / size_of(level);
   const Vec3 cell = glm::floor((position - origin) * inv);
   // Surface points lie in the scene's box (cells past it by a jitter at most): far inside int32's range.
-  const auto coordinate = [](float c) {
-    return static_cast<int32_t>(std::clamp(c, -1073741824.0f, 1073741824.0f));
-  };
+  const auto coordinate = [](float c) { return static_cast<int32_t>(std::clamp(c, -1073741824.0f, 1073741824.0f)); };
   L1CacheKey k;
   k.x = coordinate(cell.x);
   k.y = coordinate(cell.y);

@@ -85,10 +85,10 @@ uint64_t hash_of(const L1CacheKey& key);
 int l1_cache_generation(uint64_t frame);
 
 struct L1CacheStats {
-  uint64_t cells = 0;         ///< cells in use
-  uint64_t bytes = 0;         ///< memory held by the shards
-  uint64_t refused = 0;       ///< records of new cells dropped because the store had reached its cap (this generation)
-  bool full = false;          ///< the cap has been reached
+  uint64_t cells = 0;    ///< cells in use
+  uint64_t bytes = 0;    ///< memory held by the shards
+  uint64_t refused = 0;  ///< records of new cells dropped because the store had reached its cap (this generation)
+  bool full = false;     ///< the cap has been reached
 };
 
 class L1Cache;

@@ -1,10 +1,10 @@
 // The buffer sizes of render_frame, Film and write_image, per pixel.
 #include "render/render_memory.h"
 
+#include <algorithm>
+
 #include "render/indirect_light.h"
 #include "render/traced_scene.h"
-
-#include <algorithm>
 
 namespace lueur {
 
@@ -20,9 +20,9 @@ uint64_t render_memory_bytes(const RenderSettings& settings) {
   // The L1 store: its cap, and a frame's records waiting for the merge (one per pixel and per recomputed bounce hit).
   const bool store = settings.pass_enabled(Pass::kL2) && uses_cache(settings.reuse);
   const uint64_t store_bytes = store ? static_cast<uint64_t>(std::max(settings.cache_mb, 0)) << 20 : 0;
-  const uint64_t records = store ? (1 + static_cast<uint64_t>(std::max(settings.l2_rays, 0))) * sizeof(L1CacheRecord) : 0;
-  const uint64_t frame =
-      layers * sizeof(Vec3) + sizeof(SurfacePoint) + sizeof(uint32_t) + 3 * sizeof(Vec3) + records;
+  const uint64_t records =
+      store ? (1 + static_cast<uint64_t>(std::max(settings.l2_rays, 0))) * sizeof(L1CacheRecord) : 0;
+  const uint64_t frame = layers * sizeof(Vec3) + sizeof(SurfacePoint) + sizeof(uint32_t) + 3 * sizeof(Vec3) + records;
   // Saving: every layer averaged, the shown image, and the EXR channel planes, its encoder's copy and its output.
   const uint64_t output = layers * kRgb + kRgb + 3 * (layers + 1) * kRgb;
   constexpr uint64_t kProcess = uint64_t{64} << 20;  // code, thread stacks, allocator slack

@@ -58,8 +58,8 @@ Vec3 emission_of_extra_rays(const TracedScene& traced, const Camera& camera, con
 /// The colour of a cell of the L1 store in the cache-cells view: its key hashed into RGB.
 Vec3 cell_colour(const L1CacheKey& key) {
   const uint64_t h = hash_of(key);
-  return Vec3(static_cast<float>(h & 0xffu), static_cast<float>((h >> 8) & 0xffu),
-              static_cast<float>((h >> 16) & 0xffu)) * (1.0f / 255.0f);
+  const auto channel = [h](int shift) { return static_cast<float>((h >> shift) & 0xffu) / 255.0f; };
+  return Vec3(channel(0), channel(8), channel(16));
 }
 
 /// Phase 1 for one pixel. With a store grid, its L1 estimate becomes a record for the L1 store.
@@ -93,8 +93,9 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
 
   const bool l2 = settings.pass_enabled(Pass::kL2);
   const bool screen_needs_l1 = l2 && uses_screen(settings.reuse);
-  if (grid) set_layer(out, Layer::kCacheCells, i, cell_colour(grid->key(sp.position, sp.geometric_normal,
-                                                                         grid->level_at(sp.position))));
+  if (grid)
+    set_layer(out, Layer::kCacheCells, i,
+              cell_colour(grid->key(sp.position, sp.geometric_normal, grid->level_at(sp.position))));
   if (settings.pass_enabled(Pass::kL1) || screen_needs_l1) {
     PixelSampler sampler(settings.sampler, settings.seed, pixel, frame, RngPurpose::kDirect);
     DirectLightOptions options;
@@ -155,10 +156,9 @@ void trace_indirect(const TracedScene& traced, const Camera& camera, const Rende
   set_layer(out, Layer::kL2Cached, i, r.from_cached);
   // Where the bounce hits took L1(q) from, as shares: red the screen, green the store, blue recomputed.
   if (r.bounce_hits > 0) {
-    const float hits = static_cast<float>(r.bounce_hits);
+    const auto share = [&](int n) { return static_cast<float>(n) / static_cast<float>(r.bounce_hits); };
     set_layer(out, Layer::kReuseFraction, i,
-              Vec3(static_cast<float>(r.reused), static_cast<float>(r.cached),
-                   static_cast<float>(r.bounce_hits - r.reused - r.cached)) / hits);
+              Vec3(share(r.reused), share(r.cached), share(r.bounce_hits - r.reused - r.cached)));
   }
   bounce_rays += static_cast<uint64_t>(r.bounce_rays);
   bounce_hits += static_cast<uint64_t>(r.bounce_hits);
@@ -171,9 +171,7 @@ int tile_count(int width, int height) {
 }
 
 /// The tile (the task of for_each_tile) that pixel (x, y) belongs to.
-int tile_of(int x, int y, int width) {
-  return (y / kTileSize) * ((width + kTileSize - 1) / kTileSize) + x / kTileSize;
-}
+int tile_of(int x, int y, int width) { return (y / kTileSize) * ((width + kTileSize - 1) / kTileSize) + x / kTileSize; }
 
 /// Runs `per_pixel(x, y, worker)` over every pixel, one tile per task.
 template <typename PerPixel>
@@ -233,8 +231,8 @@ FrameResult render_frame(const TracedScene& traced, const Camera& camera, const 
   std::vector<WorkerCounters> counters(static_cast<size_t>(pool.thread_count()));
   for_each_tile(pool, width, height, cancel, [&](int x, int y, int worker) {
     WorkerCounters& c = counters[static_cast<size_t>(worker)];
-    trace_primary(traced, camera, settings, film, x, y, frame, buffers, c.rays, c.primary_rays,
-                  store ? &grid : nullptr, store ? tile_records(0, x, y) : nullptr);
+    trace_primary(traced, camera, settings, film, x, y, frame, buffers, c.rays, c.primary_rays, store ? &grid : nullptr,
+                  store ? tile_records(0, x, y) : nullptr);
   });
   if (settings.pass_enabled(Pass::kL2)) {
     const Clock::time_point l2_start = Clock::now();

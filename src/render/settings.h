@@ -28,8 +28,7 @@ inline constexpr std::array<std::string_view, 4> kLightStrategyNames = {"all", "
 /// frame's pixels or their running average), the world-space L1 store (the report's improvement II-B), or the screen
 /// where it saw q and the store elsewhere.
 enum class ReuseMode : int { kOff = 0, kFrame = 1, kAverage = 2, kCache = 3, kScreenCache = 4 };
-inline constexpr std::array<std::string_view, 5> kReuseModeNames = {"off", "frame", "average", "cache",
-                                                                    "screen+cache"};
+inline constexpr std::array<std::string_view, 5> kReuseModeNames = {"off", "frame", "average", "cache", "screen+cache"};
 inline constexpr bool uses_screen(ReuseMode m) {
   return m == ReuseMode::kFrame || m == ReuseMode::kAverage || m == ReuseMode::kScreenCache;
 }

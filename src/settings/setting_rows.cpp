@@ -56,9 +56,9 @@ std::vector<Row> make_rows() {
       E::kRestart, [](auto& s) -> auto& { return s.render.cache_cell_pixels; }, {0.25, 1024}, SettingRange{1, 32});
   cache_cells.always_described = false;
   table.push_back(cache_cells);
-  Row cache_mb = integer_row("cache-mb", "the L1 store's memory cap in MiB (full: it stops taking new cells)",
-                             E::kRestart, [](auto& s) -> auto& { return s.render.cache_mb; }, {1, 1 << 20},
-                             SettingRange{16, 4096});
+  Row cache_mb = integer_row(
+      "cache-mb", "the L1 store's memory cap in MiB (full: it stops taking new cells)", E::kRestart,
+      [](auto& s) -> auto& { return s.render.cache_mb; }, {1, 1 << 20}, SettingRange{16, 4096});
   cache_mb.always_described = false;
   table.push_back(cache_mb);
   table.push_back(integer_row(

@@ -173,7 +173,9 @@ void statistics_section(const PanelModel& m) {
   ImGui::Text("Elapsed %.2f s, last frame %.1f ms", s.seconds, 1e3 * s.last_frame_seconds);
   ImGui::Text("%.2f Mrays/s", s.mrays_per_second());
   if (s.l2_bounce_hits > 0) {
-    const auto share = [&](uint64_t n) { return 100.0 * static_cast<double>(n) / static_cast<double>(s.l2_bounce_hits); };
+    const auto share = [&](uint64_t n) {
+      return 100.0 * static_cast<double>(n) / static_cast<double>(s.l2_bounce_hits);
+    };
     ImGui::Text("L2: %.1f%% of bounce hits reused L1", share(s.l2_reused));
     if (s.cache.bytes > 0) {
       ImGui::Text("L1 store: %.1f%% of hits, %.1f%% recomputed", share(s.l2_cached),
