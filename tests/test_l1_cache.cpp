@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <limits>
 
 #include "render/l1_cache.h"
 #include "render/renderer.h"
@@ -43,6 +44,18 @@ TEST(L1CacheKeys, AFloorAndTheWallBesideItNeverShareACell) {
     Vec3 n(0.0f);
     n[bucket / 2] = bucket % 2 ? -1.0f : 1.0f;
     EXPECT_EQ(normal_bucket(n), bucket);
+  }
+}
+
+TEST(L1CacheKeys, ANonFinitePointGetsAKeyWithoutUndefinedBehaviour) {
+  const L1CacheGrid grid = test_grid();
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  for (const Vec3 p : {Vec3(nan, 0.0f, 0.0f), Vec3(inf, -inf, 0.0f)}) {
+    const int level = grid.level_at(p);
+    EXPECT_GE(level, 0);
+    EXPECT_LE(level, 40);
+    const L1CacheKey key = grid.key(p, Vec3(0, 0, 1), level);
+    EXPECT_EQ(hash_of(key), hash_of(key));
   }
 }
 

@@ -26,8 +26,9 @@ int L1CacheGrid::level_at(const Vec3& position) const {
   // front of it).
   const float distance = std::max(glm::length(position - eye), base_size);
   const float size = cell_pixels * pixel_per_depth * distance * std::ldexp(1.0f, -generation);
-  const float levels = std::log2(std::max(size / base_size, 1.0f));
-  return std::clamp(static_cast<int>(std::lround(levels)), 0, 40);
+  const float ratio = size / base_size;
+  if (!(ratio > 1.0f)) return 0;  // also a NaN position (a degenerate hit): the smallest cells, never a bad cast
+  return static_cast<int>(std::lround(std::min(std::log2(ratio), 40.0f)));
 }
 
 float L1CacheGrid::size_of(int level) const { return std::ldexp(base_size, level); }
@@ -36,7 +37,9 @@ L1CacheKey L1CacheGrid::key(const Vec3& position, const Vec3& normal, int level)
   const float inv = 1.0f / size_of(level);
   const Vec3 cell = glm::floor((position - origin) * inv);
   // Surface points lie in the scene's box (cells past it by a jitter at most): far inside int32's range.
-  const auto coordinate = [](float c) { return static_cast<int32_t>(std::clamp(c, -1073741824.0f, 1073741824.0f)); };
+  const auto coordinate = [](float c) {
+    return std::isnan(c) ? int32_t{0} : static_cast<int32_t>(std::clamp(c, -1073741824.0f, 1073741824.0f));
+  };
   L1CacheKey k;
   k.x = coordinate(cell.x);
   k.y = coordinate(cell.y);
