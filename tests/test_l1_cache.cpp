@@ -20,7 +20,7 @@ L1CacheGrid test_grid(int generation = 0) {
 }
 
 L1CacheRecord record_of(const L1CacheKey& key, float value, uint32_t samples) {
-  return L1CacheRecord{key, hash_of(key), Vec3(value * static_cast<float>(samples)), samples};
+  return make_l1_record(key, hash_of(key), Vec3(value), samples);
 }
 
 TEST(L1CacheKeys, TheTwoSidesOfAThinWallNeverShareACell) {
@@ -79,17 +79,23 @@ TEST(L1CacheKeys, CellsCoverAboutTheSamePixelsEverywhereAndHalvePerGeneration) {
   EXPECT_EQ(l1_cache_generation(64), 3);
 }
 
+/// Key number i of 3000 distinct ones, spread over positions and normal buckets.
+L1CacheKey numbered_key(int i) {
+  L1CacheKey key;
+  key.x = i % 17;
+  key.y = i / 17;
+  key.z = -i;
+  key.normal = static_cast<uint8_t>(i % 6);
+  return key;
+}
+
 TEST(L1CacheTable, NeverMergesTwoKeysAndFindsEachOneItsOwnSum) {
   L1Cache cache;
   cache.reset(1u << 20);
   ThreadPool pool(2);
   std::vector<std::vector<L1CacheRecord>> batches(3);
   for (int i = 0; i < 3000; ++i) {
-    L1CacheKey key;
-    key.x = i % 17;
-    key.y = i / 17;
-    key.z = -i;
-    key.normal = static_cast<uint8_t>(i % 6);
+    L1CacheKey key = numbered_key(i);
     batches[static_cast<size_t>(i % 3)].push_back(record_of(key, static_cast<float>(i), 2));
     batches[static_cast<size_t>((i + 1) % 3)].push_back(record_of(key, static_cast<float>(i), 1));
   }
@@ -97,11 +103,7 @@ TEST(L1CacheTable, NeverMergesTwoKeysAndFindsEachOneItsOwnSum) {
   EXPECT_EQ(cache.stats().cells, 3000u);
   EXPECT_FALSE(cache.stats().full);
   for (int i = 0; i < 3000; ++i) {
-    L1CacheKey key;
-    key.x = i % 17;
-    key.y = i / 17;
-    key.z = -i;
-    key.normal = static_cast<uint8_t>(i % 6);
+    L1CacheKey key = numbered_key(i);
     const L1CacheCell* cell = cache.find(key, hash_of(key));
     ASSERT_NE(cell, nullptr) << i;
     EXPECT_EQ(cell->samples, 3u);

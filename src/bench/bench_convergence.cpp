@@ -19,15 +19,6 @@ using Json = nlohmann::ordered_json;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-double rmse(const Image& a, const Image& b) {
-  double sum = 0.0;
-  for (size_t i = 0; i < a.rgb.size(); ++i) {
-    const double d = static_cast<double>(a.rgb[i]) - static_cast<double>(b.rgb[i]);
-    sum += d * d;
-  }
-  return a.rgb.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(a.rgb.size()));
-}
-
 /// What a variant is compared on: one layer, or the weighted combination of the enabled passes.
 struct Measure {
   const char* name;
@@ -64,7 +55,7 @@ Json run_variant(const Setup& s, const RenderSettings& settings, const std::vect
   auto errors = [&] {
     Json e = Json::object();
     for (size_t m = 0; m < measures.size(); ++m)
-      e[measures[m].name] = rmse(measure_image(film, settings, measures[m]), references[m]);
+      e[measures[m].name] = image_rmse(measure_image(film, settings, measures[m]), references[m]);
     return e;
   };
   // Time spent computing RMSE for the curve is not the variant's: it is taken out of the clock.
@@ -163,6 +154,15 @@ Json run_convergence(const ConvergenceOptions& o, std::FILE* log) {
     }
   }
   return results;
+}
+
+double image_rmse(const Image& a, const Image& b) {
+  double sum = 0.0;
+  for (size_t i = 0; i < a.rgb.size(); ++i) {
+    const double d = static_cast<double>(a.rgb[i]) - static_cast<double>(b.rgb[i]);
+    sum += d * d;
+  }
+  return a.rgb.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(a.rgb.size()));
 }
 
 }  // namespace lueur::bench

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "render/film.h"
+
 namespace lueur::bench {
 
 struct ConvergenceOptions {
@@ -15,6 +17,9 @@ struct ConvergenceOptions {
   int threads = 0;             ///< 0: all
   uint64_t seed = 1;           ///< the variants' seed; references use another one, so their noise is independent
 };
+
+/// Root-mean-square difference over every pixel and channel of two images of the same size.
+double image_rmse(const Image& a, const Image& b);
 
 /// Runs every variant and its reference; returns one JSON object per variant. Progress goes to `log`.
 nlohmann::ordered_json run_convergence(const ConvergenceOptions& options, std::FILE* log);

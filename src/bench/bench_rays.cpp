@@ -4,6 +4,7 @@
 
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "render/direct_light.h"
 #include "render/traced_scene.h"
 
 namespace lueur::bench {
@@ -49,7 +50,7 @@ RaySets make_ray_sets(const BenchScene& b, const Accelerator& accel, int width, 
           Ray shadow;
           shadow.origin = offset_origin(sp.position, sp.geometric_normal, wi);
           shadow.dir = target - shadow.origin;
-          shadow.tmax = 1.0f - 1e-4f;  // as the renderer: stop just short of the light
+          shadow.tmax = kShadowReach;  // as the renderer
           sets.shadow.push_back(shadow);
         }
   return sets;

@@ -5,10 +5,10 @@
 #include "bench/bench_store.h"
 
 #include <chrono>
-#include <cmath>
 #include <optional>
 #include <string>
 
+#include "bench/bench_convergence.h"
 #include "render/renderer.h"
 
 namespace lueur::bench {
@@ -16,15 +16,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using Json = nlohmann::ordered_json;
-
-double rmse(const Image& a, const Image& b) {
-  double sum = 0.0;
-  for (size_t i = 0; i < a.rgb.size(); ++i) {
-    const double d = static_cast<double>(a.rgb[i]) - static_cast<double>(b.rgb[i]);
-    sum += d * d;
-  }
-  return a.rgb.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(a.rgb.size()));
-}
 
 Image image_of(const Film& film, const RenderSettings& settings) {
   return combine_passes(film, settings.enabled, kReportWeights);
@@ -51,8 +42,8 @@ Run race(const TracedScene& traced, const Camera& camera, const RenderSettings& 
     const double elapsed = std::chrono::duration<double>(Clock::now() - start - paused).count();
     if (l2_reference) {
       const Clock::time_point pause = Clock::now();
-      run.curve.push_back({elapsed, rmse(layer_average(run.film, Layer::kL2), *l2_reference),
-                           rmse(image_of(run.film, settings), *image_reference)});
+      run.curve.push_back({elapsed, image_rmse(layer_average(run.film, Layer::kL2), *l2_reference),
+                           image_rmse(image_of(run.film, settings), *image_reference)});
       paused += Clock::now() - pause;
     } else {
       run.curve.push_back({elapsed, 0.0, 0.0});

@@ -36,7 +36,7 @@ Vec3 sample_emitter(const TracedScene& traced, const SurfacePoint& sp, uint32_t 
   shadow.origin = offset_origin(sp.position, sp.geometric_normal, wi);
   shadow.dir = light_point - shadow.origin;
   shadow.tmin = 0.0f;
-  shadow.tmax = 1.0f - 1e-4f;  // stop just short of the light itself
+  shadow.tmax = kShadowReach;
   ++rays_traced;
   if (intersect_any(traced.accel, shadow)) return Vec3(0.0f);
   return light.ke * (cos_surface * cos_light * light.area / distance2);
@@ -125,7 +125,7 @@ Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, co
     // compiler places several per instruction), then the shadow rays of the samples that can carry light.
     std::array<float, kSampleBatch> choice_u;
     PlacedLightSamples placed;
-    const Vec3 shadow_origin = offset_origin(sp.position, sp.geometric_normal, sp.geometric_normal);
+    const Vec3 shadow_origin = leaving_origin(sp);
     for (int batch = 0; batch < options.rays; batch += kSampleBatch) {
       const int count = std::min(kSampleBatch, options.rays - batch);
       sampler.draw_1d_2d(first_sample + static_cast<uint64_t>(batch), count, choice_u.data(), placed.u1.data(),
@@ -141,7 +141,7 @@ Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, co
         shadow.origin = shadow_origin;
         shadow.dir = Vec3(placed.to_x[k], placed.to_y[k], placed.to_z[k]);
         shadow.tmin = 0.0f;
-        shadow.tmax = 1.0f - 1e-4f;  // stop just short of the light itself
+        shadow.tmax = kShadowReach;
         ++rays_traced;
         if (intersect_any(traced.accel, shadow)) continue;
         const Vec3 light = table.records[placed.light[k]].ke * placed.scale[k] / placed.pmf[k];

@@ -8,6 +8,10 @@
 
 namespace lueur {
 
+/// A shadow ray runs from its origin to the light point (dir = point - origin, so t = 1 at the point) and stops just
+/// short of the light itself.
+inline constexpr float kShadowReach = 1.0f - 1e-4f;
+
 struct DirectLightOptions {
   LightStrategy strategy = LightStrategy::kArea;
   int rays = 16;  ///< samples; with kAll each sample sends one shadow ray to every emitter

@@ -74,32 +74,51 @@ int find_reusable_pixel(const Camera& camera, const ScreenBuffer& screen, uint32
 
 namespace {
 
-/// A batch of directions on the cosine-weighted hemisphere around the shading normal (`shading_frame`'s z), lane by
-/// lane and without branches, so that the compiler computes several per instruction. `open[k]` is false where the
-/// direction dips below the geometric surface: such rays would leak through it and count as zero. Every direction
-/// that is open leaves from the same origin, just off the surface on its geometric normal's side.
-struct BounceDirections {
-  using Lanes = std::array<float, kSampleBatch>;
-  Lanes x, y, z;
-  std::array<bool, kSampleBatch> open;
+/// The rays of a batch of directions on the cosine-weighted hemisphere around a surface point's shading normal,
+/// computed lane by lane and without branches, so that the compiler computes several per instruction. `open[k]` is
+/// false where the direction dips below the geometric surface: such rays would leak through it and count as zero.
+/// Every open ray leaves from the point's leaving_origin.
+class BounceDirections {
+ public:
+  explicit BounceDirections(const SurfacePoint& sp)
+      : shading_frame_(Frame::from_normal(sp.shading_normal)),
+        geometric_normal_(sp.geometric_normal),
+        origin_(leaving_origin(sp)) {}
 
-  void place(size_t count, const Lanes& u1, const Lanes& u2, const Frame& shading_frame, const Vec3& geometric_normal) {
-    const Vec3 &t = shading_frame.tangent, &b = shading_frame.bitangent, &n = shading_frame.normal;
+  /// Samples `first_sample` onwards of `sampler`, `count` of them (at most kSampleBatch).
+  void draw(PixelSampler& sampler, uint64_t first_sample, int count) {
+    Lanes u1, u2;
+    sampler.draw_2d(first_sample, count, u1.data(), u2.data());
+    place(static_cast<size_t>(count), u1, u2);
+  }
+  bool open(size_t k) const { return open_[k]; }
+  Ray ray(size_t k) const {
+    Ray r;
+    r.origin = origin_;
+    r.dir = Vec3(x_[k], y_[k], z_[k]);
+    return r;
+  }
+
+ private:
+  using Lanes = std::array<float, kSampleBatch>;
+
+  void place(size_t count, const Lanes& u1, const Lanes& u2) {
+    const Vec3 &t = shading_frame_.tangent, &b = shading_frame_.bitangent, &n = shading_frame_.normal;
+    const Vec3& g = geometric_normal_;
     for (size_t k = 0; k < count; ++k) {
       const Vec3 local = sample_cosine_hemisphere(u1[k], u2[k]);
-      x[k] = local.x * t.x + local.y * b.x + local.z * n.x;
-      y[k] = local.x * t.y + local.y * b.y + local.z * n.y;
-      z[k] = local.x * t.z + local.y * b.z + local.z * n.z;
-      open[k] =
-          (local.z > 0.0f) & (x[k] * geometric_normal.x + y[k] * geometric_normal.y + z[k] * geometric_normal.z > 0.0f);
+      x_[k] = local.x * t.x + local.y * b.x + local.z * n.x;
+      y_[k] = local.x * t.y + local.y * b.y + local.z * n.y;
+      z_[k] = local.x * t.z + local.y * b.z + local.z * n.z;
+      open_[k] = (local.z > 0.0f) & (x_[k] * g.x + y_[k] * g.y + z_[k] * g.z > 0.0f);
     }
   }
-};
 
-/// Where the bounce rays of `sp` leave from (offset_origin for any direction on its geometric normal's side).
-Vec3 bounce_origin(const SurfacePoint& sp) {
-  return offset_origin(sp.position, sp.geometric_normal, sp.geometric_normal);
-}
+  Frame shading_frame_;
+  Vec3 geometric_normal_, origin_;
+  Lanes x_, y_, z_;
+  std::array<bool, kSampleBatch> open_;
+};
 
 }  // namespace
 
@@ -113,6 +132,15 @@ void ScreenBuffer::resize(int w, int h) {
 }
 
 namespace {
+
+/// The part of L1(q) toward p that the BRDF has beyond its diffuse term, traced with `recompute`'s rays: what is
+/// added where only the view-independent part of L1 was taken from the screen or the store.
+Vec3 view_dependent_rest(const TracedScene& traced, const SurfacePoint& q, const DirectLightOptions& recompute,
+                         PixelSampler& sampler, uint64_t first_shadow_sample, uint64_t& rays_traced) {
+  DirectLightOptions rest = recompute;
+  rest.specular_only = true;
+  return estimate_direct_light(traced, q, rest, sampler, first_shadow_sample, rays_traced);
+}
 
 /// Sets `b`'s surface point and jittered cell, and starts loading the cell's slot.
 void key_for_store(const Scene& scene, const L1CacheAccess& cache, PendingBounce& b) {
@@ -137,17 +165,14 @@ bool l1_from_store(const TracedScene& traced, const SurfacePoint& q, const L1Cac
     if (brdf_is_constant(mq, settings.blinn_k, q.shading_normal, q.wo)) {
       l1_q = constant_brdf(mq, settings.blinn_k) * arriving;
     } else {
-      DirectLightOptions rest = recompute;
-      rest.specular_only = true;
       l1_q = eval_brdf_diffuse(mq, settings.blinn_k) * arriving +
-             estimate_direct_light(traced, q, rest, sampler, first_shadow_sample, rays_traced);
+             view_dependent_rest(traced, q, recompute, sampler, first_shadow_sample, rays_traced);
     }
     return true;
   }
   Vec3 arriving(0.0f);
   l1_q = estimate_direct_light(traced, q, recompute, sampler, first_shadow_sample, rays_traced, nullptr, &arriving);
-  const auto samples = static_cast<uint32_t>(std::max(recompute.rays, 0));
-  cache.records->push_back(L1CacheRecord{key, hash, arriving * static_cast<float>(samples), samples});
+  cache.records->push_back(make_l1_record(key, hash, arriving, static_cast<uint32_t>(std::max(recompute.rays, 0))));
   return false;
 }
 
@@ -167,9 +192,7 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
   recompute.rays = settings.recompute_rays();
   recompute.blinn_k = settings.blinn_k;
 
-  const Frame shading_frame = Frame::from_normal(sp.shading_normal);
-  const Vec3 origin = bounce_origin(sp);
-  BounceDirections directions;
+  BounceDirections directions(sp);
   const bool reuse = uses_screen(settings.reuse);
   for (int batch_start = 0; batch_start < settings.l2_rays; batch_start += kSampleBatch) {
     // Trace a batch of bounce rays first, starting the screen reads as each ray lands: the next ray's traversal then
@@ -177,14 +200,10 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
     PendingBatch pending;
     int pending_count = 0;
     const int count = std::min(kSampleBatch, settings.l2_rays - batch_start);
-    BounceDirections::Lanes u1, u2;
-    bounce_sampler.draw_2d(first_sample + static_cast<uint64_t>(batch_start), count, u1.data(), u2.data());
-    directions.place(static_cast<size_t>(count), u1, u2, shading_frame, sp.geometric_normal);
+    directions.draw(bounce_sampler, first_sample + static_cast<uint64_t>(batch_start), count);
     for (size_t k = 0; k < static_cast<size_t>(count); ++k) {
-      if (!directions.open[k]) continue;
-      Ray ray;
-      ray.origin = origin;
-      ray.dir = Vec3(directions.x[k], directions.y[k], directions.z[k]);
+      if (!directions.open(k)) continue;
+      const Ray ray = directions.ray(k);
       ++rays_traced;
       ++result.bounce_rays;
       const Hit hit = intersect_closest(traced.accel, ray);
@@ -224,12 +243,9 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
           if (settings.reuse_diffuse_only) {
             // The screen holds only the view-independent part; the view-dependent rest is traced toward p.
             const Material& mq = scene.material_of(b.hit.triangle);
-            if (mq.has_specular() || settings.blinn_k < 1.0f) {
-              DirectLightOptions rest = recompute;
-              rest.specular_only = true;
-              l1_q += estimate_direct_light(traced, make_surface_point(scene, b.ray, b.hit), rest, recompute_sampler,
-                                            first_shadow_sample, rays_traced);
-            }
+            if (mq.has_specular() || settings.blinn_k < 1.0f)
+              l1_q += view_dependent_rest(traced, make_surface_point(scene, b.ray, b.hit), recompute, recompute_sampler,
+                                          first_shadow_sample, rays_traced);
           }
         }
       }
@@ -270,19 +286,13 @@ Vec3 estimate_ambient_occlusion(const TracedScene& traced, const SurfacePoint& s
                                 PixelSampler& sampler, uint64_t first_sample, uint64_t& rays_traced) {
   if (rays <= 0) return Vec3(0.0f);
   int open = 0;
-  const Frame shading_frame = Frame::from_normal(sp.shading_normal);
-  const Vec3 origin = bounce_origin(sp);
-  BounceDirections directions;
-  BounceDirections::Lanes u1, u2;
+  BounceDirections directions(sp);
   for (int batch = 0; batch < rays; batch += kSampleBatch) {
     const int count = std::min(kSampleBatch, rays - batch);
-    sampler.draw_2d(first_sample + static_cast<uint64_t>(batch), count, u1.data(), u2.data());
-    directions.place(static_cast<size_t>(count), u1, u2, shading_frame, sp.geometric_normal);
+    directions.draw(sampler, first_sample + static_cast<uint64_t>(batch), count);
     for (size_t k = 0; k < static_cast<size_t>(count); ++k) {
-      if (!directions.open[k]) continue;
-      Ray ray;
-      ray.origin = origin;
-      ray.dir = Vec3(directions.x[k], directions.y[k], directions.z[k]);
+      if (!directions.open(k)) continue;
+      Ray ray = directions.ray(k);
       ray.tmax = radius;
       ++rays_traced;
       if (!intersect_any(traced.accel, ray)) ++open;

@@ -41,6 +41,11 @@ struct L1CacheRecord {
   uint32_t samples = 0;
 };
 
+/// The record of an L1 estimate whose light arriving, averaged over `samples` samples, was `arriving`.
+inline L1CacheRecord make_l1_record(const L1CacheKey& key, uint64_t hash, const Vec3& arriving, uint32_t samples) {
+  return L1CacheRecord{key, hash, arriving * static_cast<float>(samples), samples};
+}
+
 /// How surface points map to cells: a size that covers `cell_pixels` pixels at the point's distance from the camera
 /// (as wide as that many pixels would be at that depth straight ahead),
 /// rounded to a power of two of `base_size` (so that neighbouring points of a surface mostly share a level), and

@@ -109,8 +109,7 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
       Pcg32 cell_jitter = make_pixel_rng(settings.seed, pixel, frame, RngPurpose::kCacheFeed);
       const float u1 = cell_jitter.next_float(), u2 = cell_jitter.next_float();
       const L1CacheKey key = jittered_key(*grid, sp.position, sp.geometric_normal, u1, u2);
-      const auto samples = static_cast<uint32_t>(options.rays);
-      records->push_back(L1CacheRecord{key, hash_of(key), arriving * static_cast<float>(samples), samples});
+      records->push_back(make_l1_record(key, hash_of(key), arriving, static_cast<uint32_t>(options.rays)));
     }
     set_layer(out, Layer::kL1, i, l1);
     set_layer(out, Layer::kL1Diffuse, i, diffuse);
@@ -166,18 +165,18 @@ void trace_indirect(const TracedScene& traced, const Camera& camera, const Rende
   cached += static_cast<uint64_t>(r.cached);
 }
 
-int tile_count(int width, int height) {
-  return ((width + kTileSize - 1) / kTileSize) * ((height + kTileSize - 1) / kTileSize);
-}
+/// Tiles across an image `size` pixels wide (or down one that high).
+int tiles_across(int size) { return (size + kTileSize - 1) / kTileSize; }
+int tile_count(int width, int height) { return tiles_across(width) * tiles_across(height); }
 
 /// The tile (the task of for_each_tile) that pixel (x, y) belongs to.
-int tile_of(int x, int y, int width) { return (y / kTileSize) * ((width + kTileSize - 1) / kTileSize) + x / kTileSize; }
+int tile_of(int x, int y, int width) { return (y / kTileSize) * tiles_across(width) + x / kTileSize; }
 
 /// Runs `per_pixel(x, y, worker)` over every pixel, one tile per task.
 template <typename PerPixel>
 void for_each_tile(ThreadPool& pool, int width, int height, const std::atomic<bool>* cancel, PerPixel&& per_pixel) {
-  const int tiles_x = (width + kTileSize - 1) / kTileSize, tiles_y = (height + kTileSize - 1) / kTileSize;
-  pool.parallel_for(tiles_x * tiles_y, [&](int tile, int worker) {
+  const int tiles_x = tiles_across(width);
+  pool.parallel_for(tile_count(width, height), [&](int tile, int worker) {
     if (cancel && cancel->load(std::memory_order_relaxed)) return;
     const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
     const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);

@@ -34,6 +34,12 @@ struct SurfacePoint {
 
 SurfacePoint make_surface_point(const Scene& scene, const Ray& ray, const Hit& hit);
 
+/// Where rays leaving `sp` into the side it is seen from start: offset_origin for any direction on its geometric
+/// normal's side (L1's shadow rays, L2's bounce rays and AO's rays all share it).
+inline Vec3 leaving_origin(const SurfacePoint& sp) {
+  return offset_origin(sp.position, sp.geometric_normal, sp.geometric_normal);
+}
+
 /// Whether a ray along `dir` meets triangle `tri` on the side its winding faces (the side an emitter shines on).
 inline bool seen_from_front(const Scene& scene, uint32_t tri, const Vec3& dir) {
   return glm::dot(scene.geometric_normal_raw(tri), dir) < 0.0f;
