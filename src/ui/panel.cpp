@@ -130,8 +130,8 @@ void sampling_section(PanelModel& m) {
   ImGui::Checkbox("Reuse diffuse L1 only", &r.reuse_diffuse_only);
   setting_tooltip("reuse-diffuse-only");
   if (uses_cache(r.reuse)) {
-    setting_slider("L1 store cell (pixels)", "cache-cell-pixels", r.cache_cell_pixels, "%.1f");
-    setting_slider("L1 store cap (MiB)", "cache-mb", r.cache_mb);
+    setting_slider("Store cell (px)", "cache-cell-pixels", r.cache_cell_pixels, "%.1f");
+    setting_slider("Store cap (MiB)", "cache-mb", r.cache_mb);
   }
   setting_slider("AO rays", "ao-rays", r.ao_rays);
   ao_radius_widgets(m);
