@@ -27,7 +27,9 @@ struct Point {
 
 struct Run {
   Film film;
-  std::vector<Point> curve;  ///< after every frame
+  std::vector<Point> curve;                                   ///< after every frame
+  uint64_t bounce_hits = 0, from_screen = 0, from_store = 0;  ///< where L2's bounce hits took L1, over the run
+  L1CacheStats store;                                         ///< the store after the last frame
 };
 
 /// Frames of `settings` until `seconds` have passed, the errors after each one (when references are given).
@@ -38,7 +40,11 @@ Run race(const TracedScene& traced, const Camera& camera, const RenderSettings& 
   const Clock::time_point start = Clock::now();
   Clock::duration paused{0};
   while (true) {
-    render_frame(traced, camera, settings, run.film, pool);
+    const FrameResult frame = render_frame(traced, camera, settings, run.film, pool);
+    run.bounce_hits += frame.l2_bounce_hits;
+    run.from_screen += frame.l2_reused;
+    run.from_store += frame.l2_cached;
+    run.store = frame.cache;
     const double elapsed = std::chrono::duration<double>(Clock::now() - start - paused).count();
     if (l2_reference) {
       const Clock::time_point pause = Clock::now();
@@ -51,6 +57,10 @@ Run race(const TracedScene& traced, const Camera& camera, const RenderSettings& 
     if (elapsed >= seconds) break;
   }
   return run;
+}
+
+double share(uint64_t part, uint64_t whole) {
+  return whole ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
 }
 
 std::optional<double> time_to_reach(const std::vector<Point>& curve, double l2_error) {
@@ -103,12 +113,17 @@ Json run_store_comparison(std::vector<BenchScene>& scenes, const StoreOptions& o
                              {"image_rmse", end.image},
                              {"seconds_to_frame_l2_rmse", reach ? Json(*reach) : Json(nullptr)},
                              {"reference_frames", reference.film.frames},
-                             {"cache_cells", r.film.l1_cache.stats().cells}});
+                             {"cache_cells", r.store.cells},
+                             {"cache_full", r.store.full},
+                             {"share_from_screen", share(r.from_screen, r.bounce_hits)},
+                             {"share_from_store", share(r.from_store, r.bounce_hits)}});
       std::fprintf(log,
                    "lueur-bench: store %-10s %-13s %5llu frames in %5.1f s: L2 RMSE %.6f, image RMSE %.6f; "
-                   "frame's L2 error (%.6f) reached %s\n",
+                   "frame's L2 error (%.6f) reached %s; bounce hits %.0f%% screen, %.0f%% store; %llu cells%s\n",
                    b.name.c_str(), mode.c_str(), static_cast<unsigned long long>(r.film.frames), end.seconds, end.l2,
-                   end.image, frame_l2, reach ? (std::to_string(*reach).substr(0, 6) + " s").c_str() : "never");
+                   end.image, frame_l2, reach ? (std::to_string(*reach).substr(0, 6) + " s").c_str() : "never",
+                   100.0 * share(r.from_screen, r.bounce_hits), 100.0 * share(r.from_store, r.bounce_hits),
+                   static_cast<unsigned long long>(r.store.cells), r.store.full ? " (full)" : "");
     }
   }
   return results;

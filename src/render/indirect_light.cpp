@@ -21,12 +21,23 @@ struct PendingBounce {
   Hit hit;
   Vec3 q_position{0.0f};
   uint64_t sample = 0;
-  int pixel = -1;      ///< the screen pixel q projects to, or -1 (or no reuse)
-  bool keyed = false;  ///< q is bound for the L1 store: `surface`, `key` and `hash` are set and the cell prefetched
-  SurfacePoint surface;
+  int pixel = -1;      ///< the screen pixel q projects to, or -1 (or no reuse, or not looked at yet)
+  bool keyed = false;  ///< q is bound for the L1 store: `key` and `hash` are set and the cell prefetched
+  bool has_surface = false;
+  SurfacePoint surface;  ///< q's full surface point, made when first needed (surface_of)
   L1CacheKey key;
   uint64_t hash = 0;
+  Vec3 facing{0.0f};  ///< q's unit geometric normal on the side the ray came from (set with the key)
 };
+
+/// q's full surface point, made once.
+const SurfacePoint& surface_of(const Scene& scene, PendingBounce& b) {
+  if (!b.has_surface) {
+    b.surface = make_surface_point(scene, b.ray, b.hit);
+    b.has_surface = true;
+  }
+  return b.surface;
+}
 
 /// Room for a batch of pending bounces, left unconstructed (each is written whole before it is read): constructing
 /// sixteen of them per pixel and batch cost 1% of a frame.
@@ -142,38 +153,55 @@ Vec3 view_dependent_rest(const TracedScene& traced, const SurfacePoint& q, const
   return estimate_direct_light(traced, q, rest, sampler, first_shadow_sample, rays_traced);
 }
 
-/// Sets `b`'s surface point and jittered cell, and starts loading the cell's slot.
+/// Sets `b`'s jittered cell, and starts loading the cell's slot. The key needs only q and the side of its triangle
+/// that the ray came from, not the full surface point.
 void key_for_store(const Scene& scene, const L1CacheAccess& cache, PendingBounce& b) {
-  b.surface = make_surface_point(scene, b.ray, b.hit);
+  b.facing = glm::normalize(scene.geometric_normal_raw(b.hit.triangle));
+  if (glm::dot(b.facing, b.ray.dir) > 0.0f) b.facing = -b.facing;
   const float u1 = cache.jitter->next_float(), u2 = cache.jitter->next_float();
-  b.key = jittered_key(*cache.grid, b.surface.position, b.surface.geometric_normal, u1, u2);
+  b.key = jittered_key(*cache.grid, b.q_position, b.facing, u1, u2);
   b.hash = hash_of(b.key);
   b.keyed = true;
   cache.store->prefetch(b.hash);
 }
 
-/// L1(q) toward p from the L1 store where q's jittered cell is ready (returns true), otherwise traced anew and
-/// recorded for the store (returns false). From the store: the BRDF's constant part times the cell's arriving light,
-/// plus whatever the BRDF has beyond it, traced toward p.
-bool l1_from_store(const TracedScene& traced, const SurfacePoint& q, const L1CacheKey& key, uint64_t hash,
-                   const RenderSettings& settings, const DirectLightOptions& recompute, const L1CacheAccess& cache,
-                   PixelSampler& sampler, uint64_t first_shadow_sample, uint64_t& rays_traced, Vec3& l1_q) {
-  const L1CacheCell* cell = cache.store->find(key, hash);
-  if (cell && cell->samples >= kL1CacheMinSamples) {
-    const Vec3 arriving = cell->sum / static_cast<float>(cell->samples);
-    const Material& mq = traced.scene.material_of(q.triangle);
-    if (brdf_is_constant(mq, settings.blinn_k, q.shading_normal, q.wo)) {
-      l1_q = constant_brdf(mq, settings.blinn_k) * arriving;
-    } else {
-      l1_q = eval_brdf_diffuse(mq, settings.blinn_k) * arriving +
-             view_dependent_rest(traced, q, recompute, sampler, first_shadow_sample, rays_traced);
-    }
-    return true;
+/// L1(q) toward p from the L1 store, where q's jittered cell is ready (returns true; otherwise false and nothing
+/// traced): the BRDF's constant part times the cell's arriving light, plus whatever the BRDF has beyond it, traced
+/// toward p.
+bool l1_from_ready_cell(const TracedScene& traced, PendingBounce& b, const RenderSettings& settings,
+                        const DirectLightOptions& recompute, const L1CacheAccess& cache, PixelSampler& sampler,
+                        uint64_t first_shadow_sample, uint64_t& rays_traced, Vec3& l1_q) {
+  const L1CacheCell* cell = cache.store->find(b.key, b.hash);
+  if (!cell || cell->samples < kL1CacheMinSamples) return false;
+  const Vec3 arriving = cell->sum / static_cast<float>(cell->samples);
+  const Material& mq = traced.scene.material_of(b.hit.triangle);
+  // Whether the BRDF is constant needs q's shading normal (on the side the ray came from, as make_surface_point
+  // turns it) and the direction back to p, not the whole surface point.
+  bool constant = !mq.has_specular() && settings.blinn_k >= 1.0f;
+  if (!constant && !mq.has_specular() && mq.ns == 0.0f) {
+    Vec3 n = traced.scene.shading_normal(b.hit.triangle, b.hit.u, b.hit.v);
+    if (glm::dot(n, b.facing) < 0.0f) n = -n;
+    constant = brdf_is_constant(mq, settings.blinn_k, n, -b.ray.dir);
   }
+  if (constant) {
+    l1_q = constant_brdf(mq, settings.blinn_k) * arriving;
+  } else {
+    l1_q =
+        eval_brdf_diffuse(mq, settings.blinn_k) * arriving +
+        view_dependent_rest(traced, surface_of(traced.scene, b), recompute, sampler, first_shadow_sample, rays_traced);
+  }
+  return true;
+}
+
+/// L1(q) traced anew, and recorded for the store.
+Vec3 l1_traced_for_store(const TracedScene& traced, PendingBounce& b, const DirectLightOptions& recompute,
+                         const L1CacheAccess& cache, PixelSampler& sampler, uint64_t first_shadow_sample,
+                         uint64_t& rays_traced) {
   Vec3 arriving(0.0f);
-  l1_q = estimate_direct_light(traced, q, recompute, sampler, first_shadow_sample, rays_traced, nullptr, &arriving);
-  cache.records->push_back(make_l1_record(key, hash, arriving, static_cast<uint32_t>(std::max(recompute.rays, 0))));
-  return false;
+  const Vec3 l1_q = estimate_direct_light(traced, surface_of(traced.scene, b), recompute, sampler, first_shadow_sample,
+                                          rays_traced, nullptr, &arriving);
+  cache.records->push_back(make_l1_record(b.key, b.hash, arriving, static_cast<uint32_t>(std::max(recompute.rays, 0))));
+  return l1_q;
 }
 
 }  // namespace
@@ -195,8 +223,8 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
   BounceDirections directions(sp);
   const bool reuse = uses_screen(settings.reuse);
   for (int batch_start = 0; batch_start < settings.l2_rays; batch_start += kSampleBatch) {
-    // Trace a batch of bounce rays first, starting the screen reads as each ray lands: the next ray's traversal then
-    // hides their cache misses, which otherwise cost more than the traversal itself.
+    // Trace a batch of bounce rays first, starting the reads of the screen or the store as each ray lands: the next
+    // ray's traversal then hides their cache misses, which otherwise cost more than the traversal itself.
     PendingBatch pending;
     int pending_count = 0;
     const int count = std::min(kSampleBatch, settings.l2_rays - batch_start);
@@ -208,22 +236,25 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
       ++result.bounce_rays;
       const Hit hit = intersect_closest(traced.accel, ray);
       if (!hit.found()) continue;
-      // The reuse test needs only q's position and plane; the full surface point only where L1(q) is traced.
-      const Vec3 q = scene.point(hit.triangle, hit.u, hit.v);
-      const int pixel = reuse ? screen_pixel_of(camera, screen, q) : -1;
-      if (pixel >= 0) {
-        __builtin_prefetch(&screen.triangle[static_cast<size_t>(pixel)]);
-        __builtin_prefetch(&screen.pixels[static_cast<size_t>(pixel)]);
-      }
       PendingBounce& b = pending.items[static_cast<size_t>(pending_count)];
       b.ray = ray;
       b.hit = hit;
-      b.q_position = q;
+      b.q_position = scene.point(hit.triangle, hit.u, hit.v);  // the reuse test and the key need only q and its plane
       b.sample = first_sample + static_cast<uint64_t>(batch_start) + k;
-      b.pixel = pixel;
       b.keyed = false;  // the rest is written only when set
-      // Where the screen cannot serve q, the store will be asked: its cell's load starts now.
-      if (cache && pixel < 0) key_for_store(scene, *cache, b);
+      b.has_surface = false;
+      b.pixel = -1;
+      if (cache) {
+        // The store is asked first (where it has a ready cell, its L1 has hundreds of samples and the least bias);
+        // the screen, if at all, only where it has not.
+        key_for_store(scene, *cache, b);
+      } else if (reuse) {
+        b.pixel = screen_pixel_of(camera, screen, b.q_position);
+        if (b.pixel >= 0) {
+          __builtin_prefetch(&screen.triangle[static_cast<size_t>(b.pixel)]);
+          __builtin_prefetch(&screen.pixels[static_cast<size_t>(b.pixel)]);
+        }
+      }
       ++pending_count;
     }
 
@@ -231,12 +262,15 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
       PendingBounce& b = pending.items[static_cast<size_t>(k)];
       ++result.bounce_hits;
       const uint64_t first_shadow_sample = b.sample * static_cast<uint64_t>(recompute.rays);
-      // L1(q) toward p: from the screen where the camera saw q, otherwise traced anew.
+      // L1(q) toward p: from the store's ready cell, from the screen where the camera saw q, otherwise traced anew.
       Vec3 l1_q(0.0f);
       bool reused = false;
-      if (b.pixel >= 0) {
-        if (pixel_saw_q(camera, screen, b.pixel, b.hit.triangle, b.q_position,
-                        scene.geometric_normal_raw(b.hit.triangle))) {
+      const bool cached = cache && l1_from_ready_cell(traced, b, settings, recompute, *cache, recompute_sampler,
+                                                      first_shadow_sample, rays_traced, l1_q);
+      if (!cached && reuse) {
+        if (cache) b.pixel = screen_pixel_of(camera, screen, b.q_position);
+        if (b.pixel >= 0 && pixel_saw_q(camera, screen, b.pixel, b.hit.triangle, b.q_position,
+                                        scene.geometric_normal_raw(b.hit.triangle))) {
           reused = true;
           const auto i = static_cast<size_t>(b.pixel);
           l1_q = settings.reuse == ReuseMode::kAverage ? screen.l1_average[i] : screen.pixels[i].l1;
@@ -244,21 +278,16 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
             // The screen holds only the view-independent part; the view-dependent rest is traced toward p.
             const Material& mq = scene.material_of(b.hit.triangle);
             if (mq.has_specular() || settings.blinn_k < 1.0f)
-              l1_q += view_dependent_rest(traced, make_surface_point(scene, b.ray, b.hit), recompute, recompute_sampler,
+              l1_q += view_dependent_rest(traced, surface_of(scene, b), recompute, recompute_sampler,
                                           first_shadow_sample, rays_traced);
           }
         }
       }
-      bool cached = false;
-      if (!reused) {
-        if (cache) {
-          if (!b.keyed) key_for_store(scene, *cache, b);
-          cached = l1_from_store(traced, b.surface, b.key, b.hash, settings, recompute, *cache, recompute_sampler,
-                                 first_shadow_sample, rays_traced, l1_q);
-        } else {
-          l1_q = estimate_direct_light(traced, make_surface_point(scene, b.ray, b.hit), recompute, recompute_sampler,
-                                       first_shadow_sample, rays_traced);
-        }
+      if (!reused && !cached) {
+        l1_q = cache ? l1_traced_for_store(traced, b, recompute, *cache, recompute_sampler, first_shadow_sample,
+                                           rays_traced)
+                     : estimate_direct_light(traced, surface_of(scene, b), recompute, recompute_sampler,
+                                             first_shadow_sample, rays_traced);
       }
 
       // f cos / pdf with pdf = cos / pi.

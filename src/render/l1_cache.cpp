@@ -17,24 +17,30 @@ constexpr size_t kFirstShardCells = 1024;  // 32 KB per shard before the first g
 /// frame).
 bool over_load(uint64_t used, size_t capacity) { return 2 * used > static_cast<uint64_t>(capacity); }
 
-size_t shard_of(uint64_t hash) { return static_cast<size_t>(hash >> 60); }  // kShards == 16
-
 }  // namespace
 
 int L1CacheGrid::level_at(const Vec3& position) const {
   // The distance, not the depth: bounce hits behind the camera need cells as well (of the size they would have in
-  // front of it).
-  const float distance = std::max(glm::length(position - eye), base_size);
-  const float size = cell_pixels * pixel_per_depth * distance * std::ldexp(1.0f, -generation);
-  const float ratio = size / base_size;
-  if (!(ratio > 1.0f)) return 0;  // also a NaN position (a degenerate hit): the smallest cells, never a bad cast
-  return static_cast<int>(std::lround(std::min(std::log2(ratio), 40.0f)));
+  // front of it). The level is round(log2(r)) for the ratio r = size / base_size, found without a square root or a
+  // logarithm (this runs at every bounce hit): round(log2 r) = floor((1 + log2 r^2) / 2), and floor(log2 x) is the
+  // exponent of the float x.
+  const Vec3 to_eye = position - eye;
+  const float ratio2 = glm::dot(to_eye, to_eye) * ratio_per_distance * ratio_per_distance;
+  const float twice = 2.0f * ratio2;
+  if (!(twice > 2.0f)) return 0;  // r <= 1, and a NaN position (a degenerate hit): the smallest cells
+  if (!(twice < 0x1p81f)) return 40;
+  const int exponent = static_cast<int>((std::bit_cast<uint32_t>(twice) >> 23) & 0xffu) - 127;
+  return exponent / 2;
 }
 
-float L1CacheGrid::size_of(int level) const { return std::ldexp(base_size, level); }
+float L1CacheGrid::size_of(int level) const {
+  // base_size x 2^level, the power of two built from its bits (level is 0..40).
+  return base_size * std::bit_cast<float>(static_cast<uint32_t>(127 + level) << 23);
+}
 
 L1CacheKey L1CacheGrid::key(const Vec3& position, const Vec3& normal, int level) const {
-  const float inv = 1.0f / size_of(level);
+  // 1 / size_of(level) without a division: 2^-level built from its bits.
+  const float inv = inverse_base_size * std::bit_cast<float>(static_cast<uint32_t>(127 - level) << 23);
   const Vec3 cell = glm::floor((position - origin) * inv);
   // Surface points lie in the scene's box (cells past it by a jitter at most): far inside int32's range.
   const auto coordinate = [](float c) {
@@ -58,6 +64,8 @@ L1CacheGrid make_l1_cache_grid(const Camera& camera, const Vec3& lower, float di
   grid.pixel_per_depth = 2.0f * camera.tan_half_fovy / static_cast<float>(std::max(camera.height, 1));
   grid.cell_pixels = cell_pixels;
   grid.generation = generation;
+  grid.inverse_base_size = 1.0f / grid.base_size;
+  grid.ratio_per_distance = cell_pixels * grid.pixel_per_depth * std::ldexp(1.0f, -generation) / grid.base_size;
   return grid;
 }
 
@@ -97,22 +105,6 @@ void L1Cache::reset(uint64_t max_bytes) {
 
 void L1Cache::clear() {
   for (Shard& s : shards_) s = Shard{};
-}
-
-const L1CacheCell* L1Cache::find(const L1CacheKey& key, uint64_t hash) const {
-  const Shard& shard = shards_[shard_of(hash)];
-  if (shard.cells.empty()) return nullptr;
-  const size_t mask = shard.cells.size() - 1;
-  for (size_t slot = hash & mask;; slot = (slot + 1) & mask) {
-    const L1CacheCell& cell = shard.cells[slot];
-    if (cell.samples == 0) return nullptr;
-    if (cell.key == key) return &cell;
-  }
-}
-
-void L1Cache::prefetch(uint64_t hash) const {
-  const Shard& shard = shards_[shard_of(hash)];
-  if (!shard.cells.empty()) __builtin_prefetch(&shard.cells[hash & (shard.cells.size() - 1)]);
 }
 
 void L1Cache::rehash(Shard& shard, size_t capacity) {
@@ -158,7 +150,7 @@ void L1Cache::merge(const std::vector<std::vector<L1CacheRecord>>& batches, Thre
     Shard& shard = shards_[static_cast<size_t>(s)];
     for (const std::vector<L1CacheRecord>& batch : batches)
       for (const L1CacheRecord& r : batch)
-        if (shard_of(r.hash) == static_cast<size_t>(s)) insert(shard, r);
+        if (L1Cache::shard_of(r.hash) == static_cast<size_t>(s)) insert(shard, r);
   });
 }
 

@@ -57,6 +57,8 @@ struct L1CacheGrid {
   float pixel_per_depth = 1.0f;  ///< a pixel's width at unit depth
   float cell_pixels = 8.0f;
   int generation = 0;
+  float inverse_base_size = 1.0f;
+  float ratio_per_distance = 1.0f;  ///< a point's cell size over base_size, per unit of distance from the eye
 
   /// The cell level at `position`, and the size of its cells.
   int level_at(const Vec3& position) const;
@@ -116,10 +118,25 @@ class L1Cache {
   /// Empties the store, keeping its cap.
   void clear();
 
-  /// The cell with this key, or null.
-  const L1CacheCell* find(const L1CacheKey& key, uint64_t hash) const;
+  /// The cell with this key, or null. (Here, to be inlined: it runs at most bounce hits.)
+  const L1CacheCell* find(const L1CacheKey& key, uint64_t hash) const {
+    const Shard& shard = shards_[shard_of(hash)];
+    if (shard.cells.empty()) return nullptr;
+    const size_t mask = shard.cells.size() - 1;
+    for (size_t slot = hash & mask;; slot = (slot + 1) & mask) {
+      const L1CacheCell& cell = shard.cells[slot];
+      if (cell.samples == 0) return nullptr;
+      if (cell.key == key) return &cell;
+    }
+  }
   /// Starts loading the slot where `find` begins for this hash.
-  void prefetch(uint64_t hash) const;
+  void prefetch(uint64_t hash) const {
+    const Shard& shard = shards_[shard_of(hash)];
+    if (!shard.cells.empty()) __builtin_prefetch(&shard.cells[hash & (shard.cells.size() - 1)]);
+  }
+  /// The shard a hash belongs to: its top four bits.
+  static size_t shard_of(uint64_t hash) { return static_cast<size_t>(hash >> 60); }
+  static_assert(kShards == 16);
 
   /// Adds the records, batch after batch and each batch in order; one shard per task on `pool`.
   void merge(const std::vector<std::vector<L1CacheRecord>>& batches, ThreadPool& pool);

@@ -25,8 +25,8 @@ enum class LightStrategy : int { kAll = 0, kUniform = 1, kArea = 2, kPower = 3 }
 inline constexpr std::array<std::string_view, 4> kLightStrategyNames = {"all", "uniform", "area", "power"};
 
 /// Where L2 takes L1(q) from when a bounce ray hits q: nowhere (recompute), the screen (the report's reuse: this
-/// frame's pixels or their running average), the world-space L1 store (the report's improvement II-B), or the screen
-/// where it saw q and the store elsewhere.
+/// frame's pixels or their running average), the world-space L1 store (the report's improvement II-B), or both: the
+/// store where its cell is ready, the screen where it is not and the camera saw q, recomputation otherwise.
 enum class ReuseMode : int { kOff = 0, kFrame = 1, kAverage = 2, kCache = 3, kScreenCache = 4 };
 inline constexpr std::array<std::string_view, 5> kReuseModeNames = {"off", "frame", "average", "cache", "screen+cache"};
 inline constexpr bool uses_screen(ReuseMode m) {

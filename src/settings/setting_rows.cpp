@@ -42,7 +42,7 @@ std::vector<Row> make_rows() {
   table.push_back(enum_row<ReuseMode>(
       "reuse",
       "where L2 takes L1 at a bounce hit from: nowhere (recompute), this frame's pixels, their running average, the "
-      "world-space L1 store, or the screen where it saw the hit and the store elsewhere",
+      "world-space L1 store, or the store where its cell is ready and the screen where not",
       E::kRestart, kReuseModeNames, [](auto& s) -> auto& { return s.render.reuse; }));
   table.push_back(real_row(
       "recompute-ratio", "share of the L1 rays that recompute L1 where it cannot be reused", E::kRestart,
