@@ -191,6 +191,89 @@ TEST(L1CacheConsistency, TheBlurAtAShadowEdgeShrinksAsFramesAccumulate) {
   EXPECT_LT(after_256, 0.5 * after_4);
 }
 
+/// A floor lit by a small light on one side of a wall that stands on it: the shadow edge along the wall's foot is
+/// perfectly hard (no penumbra, whatever the light's size), and the floor on both sides faces up, so that the
+/// store's cells there can lend the lit side's light to the dark side.
+Scene make_wall_on_lit_floor() {
+  Scene s;
+  s.name = "wall-on-floor";
+  Material floor;
+  floor.name = "floor";
+  floor.kd = Vec3(0.8f);
+  Material light;
+  light.name = "light";
+  light.kd = Vec3(0.0f);
+  light.ke = Vec3(10.0f);
+  s.materials = {floor, light};
+  add_quad(s, {-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}, 0);            // the floor, normal +y
+  add_quad(s, {0, 0, -2}, {0, 1, -2}, {0, 1, 2}, {0, 0, 2}, 0);              // the wall at x = 0
+  add_quad(s, {0.4f, 1.5f, -0.1f}, {0.6f, 1.5f, -0.1f}, {0.6f, 1.5f, 0.1f},  // the light on the +x side,
+           {0.4f, 1.5f, 0.1f}, 1);                                           // facing down
+  collect_emitters(s);
+  return s;
+}
+
+/// The mean light arriving that L2's look-ups would take from the store at floor points on the dark side, within
+/// three pixel footprints of the wall's foot (where the truth is 0), in each frame of a real `--reuse cache` render
+/// of `frames` frames; the running mean of that bias after each frame (the image's bias after that many frames).
+/// Also the light arriving on the lit side at the same distance, after the last frame.
+std::vector<double> dark_side_bias_of_render(int frames, double& lit_side) {
+  const auto traced = prepare_scene(make_wall_on_lit_floor());
+  RenderSettings settings;
+  settings.width = 64;
+  settings.height = 64;
+  settings.l1_rays = 16;
+  settings.l2_rays = 8;
+  settings.reuse = ReuseMode::kCache;
+  const Camera camera =
+      make_camera(CameraSpec{Vec3(0.0f, 3.0f, 0.0f), Vec3(0.0f), Vec3(0.0f, 0.0f, -1.0f), 60.0f}, 64, 64);
+  Film film;
+  film.reset(settings);
+  ThreadPool pool(2);
+  Pcg32 rng(11, 3);
+  const Vec3 up(0.0f, 1.0f, 0.0f);
+  // The mean arriving light of the ready cells the look-ups at floor points x = side x [0, 3) footprints find (a cell
+  // not ready means a recomputed, unbiased value: 0 on the dark side).
+  const auto probe = [&](const L1CacheGrid& grid, float side) {
+    const float footprint = 3.0f * grid.pixel_per_depth;  // the floor lies at depth 3
+    double sum = 0.0;
+    const int probes = 2000;
+    for (int i = 0; i < probes; ++i) {
+      const Vec3 p(side * 3.0f * footprint * rng.next_float(), 0.0f, rng.next_float() - 0.5f);
+      const L1CacheKey key = jittered_key(grid, p, up, rng.next_float(), rng.next_float());
+      const L1CacheCell* cell = film.l1_cache.find(key, hash_of(key));
+      if (cell && cell->samples >= kL1CacheMinSamples) sum += cell->sum.r / static_cast<float>(cell->samples);
+    }
+    return sum / probes;
+  };
+  std::vector<double> running;
+  double total = 0.0;
+  for (int f = 0; f < frames; ++f) {
+    const int generation = l1_cache_generation(static_cast<uint64_t>(f));
+    const L1CacheGrid grid =
+        make_l1_cache_grid(camera, traced->lower, traced->diagonal, settings.cache_cell_pixels, generation);
+    // The frame starts a new generation with an empty store: its look-ups then all recompute.
+    if (film.l1_cache.generation == generation) total += probe(grid, -1.0f);
+    running.push_back(total / (f + 1));
+    render_frame(*traced, camera, settings, film, pool);
+    if (f + 1 == frames) lit_side = probe(grid, 1.0f);
+  }
+  return running;
+}
+
+TEST(L1CacheConsistency, ARenderedHardShadowsBiasAfterNFramesIsBelowItsBiasAfterNOver4) {
+  double lit = 0.0;
+  const std::vector<double> bias = dark_side_bias_of_render(64, lit);
+  const double after_4 = bias[3], after_16 = bias[15], after_64 = bias[63];
+  std::printf("light lent to the dark side after 4, 16, 64 frames: %.5f %.5f %.5f (lit side: %.5f)\n", after_4,
+              after_16, after_64, lit);
+  EXPECT_GT(lit, 0.0);
+  EXPECT_GT(after_4, 0.05 * lit);  // cells of 4 pixels do lend light across a 3-pixel band: the probe sees the blur
+  EXPECT_LT(after_16, after_4);
+  EXPECT_LT(after_64, after_16);
+  EXPECT_LT(after_64, 0.75 * after_16);
+}
+
 Film render_default_scene(RenderSettings settings, int frames, int threads) {
   Scene scene = make_default_scene();
   compute_smooth_normals(scene);

@@ -165,4 +165,13 @@ double image_rmse(const Image& a, const Image& b) {
   return a.rgb.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(a.rgb.size()));
 }
 
+double image_relmse(const Image& image, const Image& reference) {
+  double sum = 0.0;
+  for (size_t i = 0; i < image.rgb.size(); ++i) {
+    const double x = image.rgb[i], ref = reference.rgb[i];
+    sum += (x - ref) * (x - ref) / (ref * ref + 0.01);
+  }
+  return image.rgb.empty() ? 0.0 : sum / static_cast<double>(image.rgb.size());
+}
+
 }  // namespace lueur::bench

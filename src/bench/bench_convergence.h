@@ -21,6 +21,11 @@ struct ConvergenceOptions {
 /// Root-mean-square difference over every pixel and channel of two images of the same size.
 double image_rmse(const Image& a, const Image& b);
 
+/// Issue 8's relative error of `image` against `reference`: the mean over every pixel and channel of
+/// (x - ref)^2 / (ref^2 + 0.01). Unlike the RMSE, a few bright pixels (an emitter's anti-aliased edge, whose Le
+/// varies by its whole radiance from frame to frame) cannot outweigh the rest of the image.
+double image_relmse(const Image& image, const Image& reference);
+
 /// Runs every variant and its reference; returns one JSON object per variant. Progress goes to `log`.
 nlohmann::ordered_json run_convergence(const ConvergenceOptions& options, std::FILE* log);
 
