@@ -92,7 +92,7 @@ uint64_t hash_of(const L1CacheKey& key) {
 
 int l1_cache_generation(uint64_t frame) {
   int generation = 0;
-  for (uint64_t start = 4; frame >= start && generation < 30; start *= 4) ++generation;
+  for (uint64_t start = 4; frame >= start && generation < 30; start *= 8) ++generation;
   return generation;
 }
 
