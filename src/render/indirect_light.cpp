@@ -21,11 +21,10 @@ struct PendingBounce {
   Hit hit;
   Vec3 q_position{0.0f};
   uint64_t sample = 0;
-  int pixel = -1;      ///< the screen pixel q projects to, or -1 (or no reuse, or not looked at yet)
-  bool keyed = false;  ///< q is bound for the L1 store: `key` and `hash` are set and the cell prefetched
+  int pixel = -1;  ///< the screen pixel q projects to, or -1 (or no reuse, or not looked at yet)
   bool has_surface = false;
   SurfacePoint surface;  ///< q's full surface point, made when first needed (surface_of)
-  L1CacheKey key;
+  L1CacheKey key;        ///< with the L1 store: q's jittered cell (key_for_store), whose slot is being loaded
   uint64_t hash = 0;
   Vec3 facing{0.0f};  ///< q's unit geometric normal on the side the ray came from (set with the key)
 };
@@ -161,7 +160,6 @@ void key_for_store(const Scene& scene, const L1CacheAccess& cache, PendingBounce
   const float u1 = cache.jitter->next_float(), u2 = cache.jitter->next_float();
   b.key = jittered_key(*cache.grid, b.q_position, b.facing, u1, u2);
   b.hash = hash_of(b.key);
-  b.keyed = true;
   cache.store->prefetch(b.hash);
 }
 
@@ -175,15 +173,14 @@ bool l1_from_ready_cell(const TracedScene& traced, PendingBounce& b, const Rende
   if (!cell || cell->samples < kL1CacheMinSamples) return false;
   const Vec3 arriving = cell->sum / static_cast<float>(cell->samples);
   const Material& mq = traced.scene.material_of(b.hit.triangle);
-  // Whether the BRDF is constant needs q's shading normal (on the side the ray came from, as make_surface_point
-  // turns it) and the direction back to p, not the whole surface point.
-  bool constant = !mq.has_specular() && settings.blinn_k >= 1.0f;
-  if (!constant && !mq.has_specular() && mq.ns == 0.0f) {
-    Vec3 n = traced.scene.shading_normal(b.hit.triangle, b.hit.u, b.hit.v);
+  // brdf_is_constant reads q's shading normal (turned to the side the ray came from, as make_surface_point turns
+  // it) only for the report's mix with a lobe of exponent 0: only then is it interpolated, not the whole surface point.
+  Vec3 n = b.facing;
+  if (!mq.has_specular() && settings.blinn_k < 1.0f && mq.ns == 0.0f) {
+    n = traced.scene.shading_normal(b.hit.triangle, b.hit.u, b.hit.v);
     if (glm::dot(n, b.facing) < 0.0f) n = -n;
-    constant = brdf_is_constant(mq, settings.blinn_k, n, -b.ray.dir);
   }
-  if (constant) {
+  if (brdf_is_constant(mq, settings.blinn_k, n, -b.ray.dir)) {
     l1_q = constant_brdf(mq, settings.blinn_k) * arriving;
   } else {
     l1_q =
@@ -241,8 +238,7 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
       b.hit = hit;
       b.q_position = scene.point(hit.triangle, hit.u, hit.v);  // the reuse test and the key need only q and its plane
       b.sample = first_sample + static_cast<uint64_t>(batch_start) + k;
-      b.keyed = false;  // the rest is written only when set
-      b.has_surface = false;
+      b.has_surface = false;  // the rest is written only when set
       b.pixel = -1;
       if (cache) {
         // The store is asked first (where it has a ready cell, its L1 has hundreds of samples and the least bias);

@@ -17,6 +17,9 @@ constexpr size_t kFirstShardCells = 1024;  // 32 KB per shard before the first g
 /// frame).
 bool over_load(uint64_t used, size_t capacity) { return 2 * used > static_cast<uint64_t>(capacity); }
 
+/// 2^exponent built from its bits, for |exponent| <= 126 (here a cell level, 0..40): no call into libm.
+float power_of_two(int exponent) { return std::bit_cast<float>(static_cast<uint32_t>(127 + exponent) << 23); }
+
 }  // namespace
 
 int L1CacheGrid::level_at(const Vec3& position) const {
@@ -33,14 +36,10 @@ int L1CacheGrid::level_at(const Vec3& position) const {
   return exponent / 2;
 }
 
-float L1CacheGrid::size_of(int level) const {
-  // base_size x 2^level, the power of two built from its bits (level is 0..40).
-  return base_size * std::bit_cast<float>(static_cast<uint32_t>(127 + level) << 23);
-}
+float L1CacheGrid::size_of(int level) const { return base_size * power_of_two(level); }
 
 L1CacheKey L1CacheGrid::key(const Vec3& position, const Vec3& normal, int level) const {
-  // 1 / size_of(level) without a division: 2^-level built from its bits.
-  const float inv = inverse_base_size * std::bit_cast<float>(static_cast<uint32_t>(127 - level) << 23);
+  const float inv = inverse_base_size * power_of_two(-level);  // 1 / size_of(level), without a division
   const Vec3 cell = glm::floor((position - origin) * inv);
   // Surface points lie in the scene's box (cells past it by a jitter at most): far inside int32's range.
   const auto coordinate = [](float c) {
