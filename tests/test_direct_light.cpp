@@ -170,13 +170,13 @@ TEST(DirectLight, BlinnPhongMixWithKOneIsLambertAndLobeIsNormalised) {
   m.kd = Vec3(0.5f);
   m.ns = 20.0f;
   const Vec3 n(0, 0, 1), wi = glm::normalize(Vec3(0.3f, 0.1f, 1.0f)), wo = glm::normalize(Vec3(-0.2f, 0.4f, 1.0f));
-  EXPECT_FLOAT_EQ(eval_brdf(m, n, wi, wo, 1.0f).r, 0.5f * kInvPi);
+  EXPECT_FLOAT_EQ(eval_brdf(m, m.kd, n, wi, wo, 1.0f).r, 0.5f * kInvPi);
   // K = 0: pure lobe; at the mirror configuration cos(theta_h) = 1 and the lobe is (n + 8) / (8 pi).
   const Vec3 mirror(-wi.x, -wi.y, wi.z);
-  EXPECT_NEAR(eval_brdf(m, n, wi, mirror, 0.0f).r, 0.5f * 28.0f / (8.0f * kPi), 1e-5f);
+  EXPECT_NEAR(eval_brdf(m, m.kd, n, wi, mirror, 0.0f).r, 0.5f * 28.0f / (8.0f * kPi), 1e-5f);
   // With Ks the mix is not used: Kd / pi + Ks lobe.
   m.ks = Vec3(0.25f);
-  EXPECT_NEAR(eval_brdf(m, n, wi, mirror, 0.7f).r, 0.5f * kInvPi + 0.25f * 28.0f / (8.0f * kPi), 1e-5f);
+  EXPECT_NEAR(eval_brdf(m, m.kd, n, wi, mirror, 0.7f).r, 0.5f * kInvPi + 0.25f * 28.0f / (8.0f * kPi), 1e-5f);
 }
 
 }  // namespace

@@ -3,11 +3,12 @@
 
 namespace lueur {
 
-Accelerator build_accelerator(const std::vector<Vec3>& corners, AccelKind kind) {
+Accelerator build_accelerator(const std::vector<Vec3>& corners, AccelKind kind, const HitFilter& filter) {
   Accelerator accel;
   accel.kind = kind;
+  accel.filter = filter;
   if (kind == AccelKind::kEmbree)
-    accel.embree = build_embree_scene(corners);
+    accel.embree = build_embree_scene(corners, filter);
   else
     accel.bvh = build_bvh(corners);
   return accel;

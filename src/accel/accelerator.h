@@ -16,11 +16,13 @@ struct Accelerator {
   AccelKind kind = AccelKind::kLueur;
   Bvh bvh;                                    ///< kind == kLueur
   std::shared_ptr<const EmbreeScene> embree;  ///< kind == kEmbree
+  HitFilter filter;  ///< set (accepts != nullptr) when some surfaces have holes: hits it refuses are passed through
 };
 
 /// Builds the chosen back-end over triangles given as three corners each (as build_bvh takes them); hits report
-/// the input index. Throws AccelError for Embree in a build without it.
-Accelerator build_accelerator(const std::vector<Vec3>& corners, AccelKind kind);
+/// the input index. Both back-ends then count only the hits `filter` accepts, when it is set (Embree through its
+/// filter functions). Throws AccelError for Embree in a build without it.
+Accelerator build_accelerator(const std::vector<Vec3>& corners, AccelKind kind, const HitFilter& filter = {});
 
 /// Bytes the structure's queries read (Lueur: wide nodes and triangle groups; Embree: what its memory monitor
 /// reports).
@@ -28,13 +30,14 @@ size_t accelerator_bytes(const Accelerator& accel);
 
 /// Closest hit with t in (ray.tmin, ray.tmax); both back-ends give the same Hit for a hit on the same triangle.
 inline Hit intersect_closest(const Accelerator& accel, const Ray& ray) {
-  return accel.kind == AccelKind::kEmbree ? embree_intersect_closest(*accel.embree, ray)
-                                          : intersect_closest(accel.bvh, ray);
+  if (accel.kind == AccelKind::kEmbree) return embree_intersect_closest(*accel.embree, ray);
+  return accel.filter.accepts ? intersect_closest(accel.bvh, ray, accel.filter) : intersect_closest(accel.bvh, ray);
 }
 
 /// True if anything is hit with t in (ray.tmin, ray.tmax): the shadow-ray query.
 inline bool intersect_any(const Accelerator& accel, const Ray& ray) {
-  return accel.kind == AccelKind::kEmbree ? embree_intersect_any(*accel.embree, ray) : intersect_any(accel.bvh, ray);
+  if (accel.kind == AccelKind::kEmbree) return embree_intersect_any(*accel.embree, ray);
+  return accel.filter.accepts ? intersect_any(accel.bvh, ray, accel.filter) : intersect_any(accel.bvh, ray);
 }
 
 }  // namespace lueur

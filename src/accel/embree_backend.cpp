@@ -5,6 +5,7 @@
 #include <embree3/rtcore.h>
 
 #include <atomic>
+#include <limits>
 #include <string>
 
 #include "bvh/bvh.h"
@@ -19,6 +20,7 @@ struct EmbreeScene {
   std::vector<BvhTriangle> triangles;  ///< Lueur's form of each triangle, in input order, for the exact hit
   std::atomic<long long> bytes{0};     ///< Embree's live allocations, from its memory monitor
   std::string error;                   ///< the first error Embree reported
+  HitFilter filter;                    ///< hits to pass through (alpha cutouts), when set
 
   EmbreeScene() = default;
   EmbreeScene(const EmbreeScene&) = delete;
@@ -71,11 +73,34 @@ RTCRayHit trace(const EmbreeScene& scene, const Ray& ray) {
   return rh;
 }
 
+/// Embree's filter function (intersect and occluded alike): refuses the hits the scene's HitFilter refuses. The
+/// barycentrics are recomputed with Lueur's triangle test, as embree_intersect_closest does, so that a hole is the
+/// same hole in both back-ends.
+void filter_hits(const RTCFilterFunctionNArguments* args) {
+  const auto* s = static_cast<const EmbreeScene*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const uint32_t id = RTCHitN_primID(args->hit, args->N, i);
+    float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+    Ray ray;
+    ray.origin = Vec3(RTCRayN_org_x(args->ray, args->N, i), RTCRayN_org_y(args->ray, args->N, i),
+                      RTCRayN_org_z(args->ray, args->N, i));
+    ray.dir = Vec3(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+                   RTCRayN_dir_z(args->ray, args->N, i));
+    ray.tmin = RTCRayN_tnear(args->ray, args->N, i);
+    ray.tmax = std::numeric_limits<float>::infinity();
+    const BvhTriangle& tri = s->triangles[id];
+    float t = 0.0f, uu = 0.0f, vv = 0.0f;
+    if (intersect_triangle(ray, tri.v0, tri.e1, tri.e2, t, uu, vv)) u = uu, v = vv;
+    if (!s->filter(id, u, v)) args->valid[i] = 0;
+  }
+}
+
 }  // namespace
 
 bool embree_available() { return true; }
 
-std::shared_ptr<const EmbreeScene> build_embree_scene(const std::vector<Vec3>& corners) {
+std::shared_ptr<const EmbreeScene> build_embree_scene(const std::vector<Vec3>& corners, const HitFilter& filter) {
   const size_t count = corners.size() / 3;
   if (count >= kNoHit) throw AccelError("Embree: too many triangles for 32-bit indices");
   auto s = std::make_shared<EmbreeScene>();
@@ -112,6 +137,12 @@ std::shared_ptr<const EmbreeScene> build_embree_scene(const std::vector<Vec3>& c
                              3 * sizeof(float), 3 * count);
   rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, s->indices.data(), 0,
                              3 * sizeof(uint32_t), count);
+  if (filter.accepts) {
+    s->filter = filter;
+    rtcSetGeometryUserData(geometry, s.get());
+    rtcSetGeometryIntersectFilterFunction(geometry, filter_hits);
+    rtcSetGeometryOccludedFilterFunction(geometry, filter_hits);
+  }
   rtcCommitGeometry(geometry);
   rtcAttachGeometryByID(s->scene, geometry, 0);
   rtcReleaseGeometry(geometry);

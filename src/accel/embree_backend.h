@@ -1,6 +1,6 @@
 // Embree 3 as a second back-end behind Lueur's closest-hit and any-hit interface. Only embree_backend.cpp sees
 // Embree's headers; a build without Embree links embree_missing.cpp instead, whose functions say it is absent.
-// Depends on core (math, ray) only.
+// Depends on core (math, ray) and the BVH header (its triangle test and HitFilter).
 #pragma once
 
 #include <cstddef>
@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "bvh/bvh.h"
 #include "core/ray.h"
 
 namespace lueur {
@@ -25,8 +26,10 @@ bool embree_available();
 
 /// Builds Embree's BVH (high build quality) over triangles given as three corners each, in input order, so that
 /// Embree's primitive ids are the input indices. Triangles that build_bvh drops (non-finite vertices or edges) are
-/// left out here too. Throws AccelError without Embree or when Embree fails.
-std::shared_ptr<const EmbreeScene> build_embree_scene(const std::vector<Vec3>& corners);
+/// left out here too. When `filter` is set, Embree's intersect and occluded filter functions refuse the hits it
+/// refuses, judged at the barycentrics Lueur's own triangle test gives (so both back-ends cut the same holes).
+/// Throws AccelError without Embree or when Embree fails.
+std::shared_ptr<const EmbreeScene> build_embree_scene(const std::vector<Vec3>& corners, const HitFilter& filter = {});
 
 /// Closest hit through rtcIntersect1. The triangle is Embree's; t, u, v are then recomputed with Lueur's own
 /// triangle test (intersect_triangle) on that triangle, so that a hit on the same triangle is the same Hit,

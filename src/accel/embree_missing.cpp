@@ -7,7 +7,7 @@ struct EmbreeScene {};
 
 bool embree_available() { return false; }
 
-std::shared_ptr<const EmbreeScene> build_embree_scene(const std::vector<Vec3>&) {
+std::shared_ptr<const EmbreeScene> build_embree_scene(const std::vector<Vec3>&, const HitFilter&) {
   throw AccelError("--accel embree: this build has no Embree (install libembree-dev and rebuild)");
 }
 

@@ -111,9 +111,14 @@ int run_headless(const AppOptions& options) {
                      ": that layer is not rendered with these --passes/--reuse settings");
   ThreadPool pool(options.threads);
   const TracedScene& traced = *opened.traced;
-  std::fprintf(stderr, "lueur: %s, %zu triangles, %zu emitters, %dx%d, %d frames, %d threads, accel %s\n",
-               traced.scene.name.c_str(), traced.scene.triangles.size(), traced.lights.size(), settings.width,
-               settings.height, frames, pool.thread_count(),
+  std::string textures;
+  if (!traced.scene.textures.empty())
+    textures = ", " + std::to_string(traced.scene.textures.size()) +
+               (traced.scene.textures.size() == 1 ? " texture (" : " textures (") +
+               format_bytes(traced.scene.texture_bytes()) + (traced.scene.has_cutouts() ? ", with cutouts)" : ")");
+  std::fprintf(stderr, "lueur: %s, %zu triangles, %zu emitters%s, %dx%d, %d frames, %d threads, accel %s\n",
+               traced.scene.name.c_str(), traced.scene.triangles.size(), traced.lights.size(), textures.c_str(),
+               settings.width, settings.height, frames, pool.thread_count(),
                std::string(enum_name(kAccelKindNames, options.settings.accel)).c_str());
 
   const Clock::time_point start = Clock::now();

@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "core/huge_pages.h"
-
 #include "core/ray.h"
 
 namespace lueur {
@@ -67,7 +66,7 @@ struct alignas(16) BvhTriangleGroup {
 };
 
 struct Bvh {
-  HugePageVector<BvhNode> nodes;  ///< the binned-SAH BVH2 after reinsertion; nodes[0] is the root
+  HugePageVector<BvhNode> nodes;          ///< the binned-SAH BVH2 after reinsertion; nodes[0] is the root
   HugePageVector<BvhTriangle> triangles;  ///< reordered once after the build so leaves read them directly
   /// What the queries traverse: the BVH2 collapsed into a 4-wide tree (wide_nodes[0] is the root), or an 8-wide one
   /// (wide8_nodes) when the CPU has AVX2, over leaves of triangle groups. The BVH2 above is kept as the build's
@@ -111,6 +110,19 @@ Hit intersect_closest(const Bvh& bvh, const Ray& ray);
 
 /// True if any triangle is hit with t in (ray.tmin, ray.tmax): the shadow-ray query.
 bool intersect_any(const Bvh& bvh, const Ray& ray);
+
+/// Which hits count, for surfaces with holes (alpha cutouts): a hit on triangle `id` (input index) at barycentrics
+/// (u, v) of its corners b and c counts only if `accepts` says so. Queries taking a filter skip the hits it refuses
+/// and go on to what lies behind them.
+struct HitFilter {
+  bool (*accepts)(const void* context, uint32_t id, float u, float v) = nullptr;
+  const void* context = nullptr;
+  bool operator()(uint32_t id, float u, float v) const { return accepts(context, id, u, v); }
+};
+
+/// intersect_closest and intersect_any counting only the hits `filter` accepts (whose `accepts` must be set).
+Hit intersect_closest(const Bvh& bvh, const Ray& ray, const HitFilter& filter);
+bool intersect_any(const Bvh& bvh, const Ray& ray, const HitFilter& filter);
 
 /// What queries did, summed over many: judging a tree by its work per ray is steadier than by timings
 /// (lueur-bench's traversal section). The counted queries are a separate instantiation of the traversals, so the

@@ -35,10 +35,17 @@ struct BestHit {
   float u = 0.0f, v = 0.0f;
 };
 
+/// Which hits count: every one (NoFilter, compiled away), or those a HitFilter accepts (alpha cutouts).
+struct NoFilter {
+  bool operator()(uint32_t, float, float) const { return true; }
+};
+
 /// Tests the `count` triangle groups of a leaf starting at `first`, keeping the closest hit in `best`. Equal
 /// distances go to the lowest input index, whichever leaf was reached first.
+template <typename Filter>
 inline void intersect_leaf_closest(const BvhTriangleGroup* groups, uint32_t first, uint32_t count,
-                                   const RayLanes& lanes, const ClampLanes& clamp_lanes, BestHit& best) {
+                                   const RayLanes& lanes, const ClampLanes& clamp_lanes, BestHit& best,
+                                   const Filter& filter) {
   for (uint32_t g = 0; g < count; ++g) {
     const BvhTriangleGroup& group = groups[first + g];
     __m128 t4, u4, v4;
@@ -50,7 +57,7 @@ inline void intersect_leaf_closest(const BvhTriangleGroup* groups, uint32_t firs
       mask &= mask - 1;
       const float t = lane(t4, k);
       const uint32_t id = group.id[k];
-      if (t < best.t || (t == best.t && id < best.id)) {
+      if ((t < best.t || (t == best.t && id < best.id)) && filter(id, lane(u4, k), lane(v4, k))) {
         best.t = t;
         best.id = id;
         best.u = lane(u4, k);
@@ -61,8 +68,9 @@ inline void intersect_leaf_closest(const BvhTriangleGroup* groups, uint32_t firs
 }
 
 /// Whether any triangle of the leaf's `count` groups starting at `first` is hit inside the ray's interval.
+template <typename Filter>
 inline bool intersect_leaf_any(const BvhTriangleGroup* groups, uint32_t first, uint32_t count, const RayData& r,
-                               const RayLanes& lanes) {
+                               const RayLanes& lanes, const Filter& filter) {
   for (uint32_t g = 0; g < count; ++g) {
     const BvhTriangleGroup& group = groups[first + g];
     __m128 t4, u4, v4;
@@ -71,7 +79,7 @@ inline bool intersect_leaf_any(const BvhTriangleGroup* groups, uint32_t first, u
       const auto k = static_cast<uint32_t>(std::countr_zero(static_cast<unsigned>(mask)));
       mask &= mask - 1;
       float t = lane(t4, k);
-      if (finish_lane(r, group, k, t)) return true;
+      if (finish_lane(r, group, k, t) && filter(group.id[k], lane(u4, k), lane(v4, k))) return true;
     }
   }
   return false;
@@ -189,8 +197,8 @@ inline const BvhWideNode8* wide_tree(const Bvh& bvh) {
 }
 
 /// Closest hit in the BVH's wide tree of `Node`s, Simd::kWidth children each.
-template <typename Simd, typename Node, typename Count>
-Hit closest_hit(const Bvh& bvh, const Ray& ray, const Count& count) {
+template <typename Simd, typename Node, typename Count, typename Filter = NoFilter>
+Hit closest_hit(const Bvh& bvh, const Ray& ray, const Count& count, const Filter& filter = {}) {
   using V = typename Simd::V;
   constexpr uint32_t kWidth = Simd::kWidth;
   count.query();
@@ -222,7 +230,7 @@ Hit closest_hit(const Bvh& bvh, const Ray& ray, const Count& count) {
       }
     } else {
       count.leaf(current.count);
-      intersect_leaf_closest(groups, current.child, current.count, lanes, clamp_lanes, best);
+      intersect_leaf_closest(groups, current.child, current.count, lanes, clamp_lanes, best, filter);
     }
     // Next waiting node that can still hold a hit no farther than the best one.
     do {
@@ -233,8 +241,8 @@ Hit closest_hit(const Bvh& bvh, const Ray& ray, const Count& count) {
 }
 
 /// Whether anything in the BVH's wide tree of `Node`s, Simd::kWidth children each, is hit.
-template <typename Simd, typename Node, typename Count>
-bool any_hit(const Bvh& bvh, const Ray& ray, const Count& count) {
+template <typename Simd, typename Node, typename Count, typename Filter = NoFilter>
+bool any_hit(const Bvh& bvh, const Ray& ray, const Count& count, const Filter& filter = {}) {
   using V = typename Simd::V;
   count.query();
   if (bvh.empty()) return false;
@@ -261,7 +269,7 @@ bool any_hit(const Bvh& bvh, const Ray& ray, const Count& count) {
       }
     } else {
       count.leaf(current.count);
-      if (intersect_leaf_any(groups, current.child, current.count, r, lanes)) return true;
+      if (intersect_leaf_any(groups, current.child, current.count, r, lanes, filter)) return true;
     }
     if (size == 0) return false;
     current = stack[--size];
@@ -276,5 +284,7 @@ Hit intersect_closest_wide8(const Bvh& bvh, const Ray& ray);
 bool intersect_any_wide8(const Bvh& bvh, const Ray& ray);
 Hit intersect_closest_wide8(const Bvh& bvh, const Ray& ray, TraversalCounts& counts);
 bool intersect_any_wide8(const Bvh& bvh, const Ray& ray, TraversalCounts& counts);
+Hit intersect_closest_wide8(const Bvh& bvh, const Ray& ray, const HitFilter& filter);
+bool intersect_any_wide8(const Bvh& bvh, const Ray& ray, const HitFilter& filter);
 
 }  // namespace lueur

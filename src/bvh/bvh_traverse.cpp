@@ -42,4 +42,14 @@ bool intersect_any(const Bvh& bvh, const Ray& ray, TraversalCounts& counts) {
   return any_hit<Sse, BvhWideNode>(bvh, ray, Counting{counts});
 }
 
+Hit intersect_closest(const Bvh& bvh, const Ray& ray, const HitFilter& filter) {
+  if (!bvh.wide8_nodes.empty()) return intersect_closest_wide8(bvh, ray, filter);
+  return closest_hit<Sse, BvhWideNode>(bvh, ray, NoCounts{}, filter);
+}
+
+bool intersect_any(const Bvh& bvh, const Ray& ray, const HitFilter& filter) {
+  if (!bvh.wide8_nodes.empty()) return intersect_any_wide8(bvh, ray, filter);
+  return any_hit<Sse, BvhWideNode>(bvh, ray, NoCounts{}, filter);
+}
+
 }  // namespace lueur

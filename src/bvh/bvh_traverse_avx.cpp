@@ -43,5 +43,11 @@ Hit intersect_closest_wide8(const Bvh& bvh, const Ray& ray, TraversalCounts& cou
 bool intersect_any_wide8(const Bvh& bvh, const Ray& ray, TraversalCounts& counts) {
   return any_hit<Avx, BvhWideNode8>(bvh, ray, Counting{counts});
 }
+Hit intersect_closest_wide8(const Bvh& bvh, const Ray& ray, const HitFilter& filter) {
+  return closest_hit<Avx, BvhWideNode8>(bvh, ray, NoCounts{}, filter);
+}
+bool intersect_any_wide8(const Bvh& bvh, const Ray& ray, const HitFilter& filter) {
+  return any_hit<Avx, BvhWideNode8>(bvh, ray, NoCounts{}, filter);
+}
 
 }  // namespace lueur

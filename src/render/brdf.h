@@ -13,22 +13,25 @@ inline float blinn_phong_lobe(float cos_theta_h, float exponent) {
   return (exponent + 8.0f) * (1.0f / (8.0f * kPi)) * power;
 }
 
+// Every function takes the diffuse albedo `kd` at the point apart from the material: it is the material's Kd, or its
+// colour map at the point (Scene::albedo).
+
 /// BRDF for light arriving along `wi` and leaving along `wo` (both unit, pointing away from the surface) at a point
 /// with shading normal `n`. With Ks: Kd / pi + Ks lobe. Without Ks: the report's mix Kd (K / pi + (1 - K) lobe).
-inline Vec3 eval_brdf(const Material& m, const Vec3& n, const Vec3& wi, const Vec3& wo, float blinn_k) {
+inline Vec3 eval_brdf(const Material& m, const Vec3& kd, const Vec3& n, const Vec3& wi, const Vec3& wo, float blinn_k) {
   // Pure Lambert (no Ks, K = 1): the lobe's weight is zero, so neither it nor the half vector is needed.
-  if (!m.has_specular() && blinn_k >= 1.0f) return m.kd * kInvPi;
+  if (!m.has_specular() && blinn_k >= 1.0f) return kd * kInvPi;
   const Vec3 h = wi + wo;
   const float h_length = glm::length(h);
   const float cos_theta_h = h_length > 0.0f ? glm::dot(n, h) / h_length : 0.0f;
   const float lobe = blinn_phong_lobe(cos_theta_h, m.ns);
-  if (m.has_specular()) return m.kd * kInvPi + m.ks * lobe;
-  return m.kd * (blinn_k * kInvPi + (1.0f - blinn_k) * lobe);
+  if (m.has_specular()) return kd * kInvPi + m.ks * lobe;
+  return kd * (blinn_k * kInvPi + (1.0f - blinn_k) * lobe);
 }
 
 /// The view-independent part of the BRDF (what a Lambertian surface would reflect).
-inline Vec3 eval_brdf_diffuse(const Material& m, float blinn_k) {
-  return m.has_specular() ? m.kd * kInvPi : m.kd * (blinn_k * kInvPi);
+inline Vec3 eval_brdf_diffuse(const Material& m, const Vec3& kd, float blinn_k) {
+  return m.has_specular() ? kd * kInvPi : kd * (blinn_k * kInvPi);
 }
 
 /// Whether the BRDF toward `wo` is the same for every direction of arriving light above the surface, so that L1 is
@@ -41,9 +44,9 @@ inline bool brdf_is_constant(const Material& m, float blinn_k, const Vec3& n, co
 }
 
 /// That constant, where brdf_is_constant holds: what eval_brdf gives for any light direction above the surface.
-inline Vec3 constant_brdf(const Material& m, float blinn_k) {
-  if (blinn_k >= 1.0f) return m.kd * kInvPi;
-  return m.kd * (blinn_k * kInvPi + (1.0f - blinn_k) * blinn_phong_lobe(1.0f, 0.0f));
+inline Vec3 constant_brdf(const Vec3& kd, float blinn_k) {
+  if (blinn_k >= 1.0f) return kd * kInvPi;
+  return kd * (blinn_k * kInvPi + (1.0f - blinn_k) * blinn_phong_lobe(1.0f, 0.0f));
 }
 
 }  // namespace lueur

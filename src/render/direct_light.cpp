@@ -100,12 +100,12 @@ Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, co
   if (arriving) *arriving = Vec3(0.0f);
   if (table.empty() || options.rays <= 0) return Vec3(0.0f);
   const Material& material = traced.scene.material_of(sp.triangle);
-  const Vec3 f_diffuse = eval_brdf_diffuse(material, options.blinn_k);
+  const Vec3 f_diffuse = eval_brdf_diffuse(material, sp.albedo, options.blinn_k);
 
   Vec3 sum(0.0f), diffuse_sum(0.0f), arriving_sum(0.0f);
   auto accumulate = [&](const Vec3& light, const Vec3& wi) {
     if (light.r <= 0.0f && light.g <= 0.0f && light.b <= 0.0f) return;
-    Vec3 f = eval_brdf(material, sp.shading_normal, wi, sp.wo, options.blinn_k);
+    Vec3 f = eval_brdf(material, sp.albedo, sp.shading_normal, wi, sp.wo, options.blinn_k);
     if (options.specular_only) f -= f_diffuse;
     sum += light * f;
     diffuse_sum += light * f_diffuse;

@@ -180,11 +180,13 @@ bool l1_from_ready_cell(const TracedScene& traced, PendingBounce& b, const Rende
     n = traced.scene.shading_normal(b.hit.triangle, b.hit.u, b.hit.v);
     if (glm::dot(n, b.facing) < 0.0f) n = -n;
   }
+  // The store holds the light arriving at q; q's own albedo (its colour map at q) turns it into L1.
+  const Vec3 kd = traced.scene.albedo(b.hit.triangle, b.hit.u, b.hit.v);
   if (brdf_is_constant(mq, settings.blinn_k, n, -b.ray.dir)) {
-    l1_q = constant_brdf(mq, settings.blinn_k) * arriving;
+    l1_q = constant_brdf(kd, settings.blinn_k) * arriving;
   } else {
     l1_q =
-        eval_brdf_diffuse(mq, settings.blinn_k) * arriving +
+        eval_brdf_diffuse(mq, kd, settings.blinn_k) * arriving +
         view_dependent_rest(traced, surface_of(traced.scene, b), recompute, sampler, first_shadow_sample, rays_traced);
   }
   return true;
@@ -199,6 +201,20 @@ Vec3 l1_traced_for_store(const TracedScene& traced, PendingBounce& b, const Dire
                                           rays_traced, nullptr, &arriving);
   cache.records->push_back(make_l1_record(b.key, b.hash, arriving, static_cast<uint32_t>(std::max(recompute.rays, 0))));
   return l1_q;
+}
+
+/// Turns L1 at a point of albedo `seen` into L1 at a point of albedo `wanted`; false (nothing changed) where a
+/// channel of `seen` is black and that of `wanted` is not, whose light the pixel cannot tell.
+bool rescale_to_albedo(const Vec3& seen, const Vec3& wanted, Vec3& l1) {
+  Vec3 scaled(0.0f);
+  for (int c = 0; c < 3; ++c) {
+    if (seen[c] > 0.0f)
+      scaled[c] = l1[c] * (wanted[c] / seen[c]);
+    else if (wanted[c] > 0.0f)
+      return false;
+  }
+  l1 = scaled;
+  return true;
 }
 
 }  // namespace
@@ -267,10 +283,12 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
         if (cache) b.pixel = screen_pixel_of(camera, screen, b.q_position);
         if (b.pixel >= 0 && pixel_saw_q(camera, screen, b.pixel, b.hit.triangle, b.q_position,
                                         scene.geometric_normal_raw(b.hit.triangle))) {
-          reused = true;
           const auto i = static_cast<size_t>(b.pixel);
           l1_q = settings.reuse == ReuseMode::kAverage ? screen.l1_average[i] : screen.pixels[i].l1;
-          if (settings.reuse_diffuse_only) {
+          // On a colour map the pixel's texel need not be q's: L1 scales with the albedo, channel by channel.
+          reused = scene.material_of(b.hit.triangle).diffuse_texture < 0 ||
+                   rescale_to_albedo(screen.pixels[i].albedo, scene.albedo(b.hit.triangle, b.hit.u, b.hit.v), l1_q);
+          if (reused && settings.reuse_diffuse_only) {
             // The screen holds only the view-independent part; the view-dependent rest is traced toward p.
             const Material& mq = scene.material_of(b.hit.triangle);
             if (mq.has_specular() || settings.blinn_k < 1.0f)
@@ -287,7 +305,8 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
       }
 
       // f cos / pdf with pdf = cos / pi.
-      const Vec3 contribution = eval_brdf(material, sp.shading_normal, b.ray.dir, sp.wo, settings.blinn_k) * kPi * l1_q;
+      const Vec3 contribution =
+          eval_brdf(material, sp.albedo, sp.shading_normal, b.ray.dir, sp.wo, settings.blinn_k) * kPi * l1_q;
       if (reused) {
         result.from_reused += contribution;
         ++result.reused;
@@ -323,7 +342,7 @@ Vec3 estimate_ambient_occlusion(const TracedScene& traced, const SurfacePoint& s
       if (!intersect_any(traced.accel, ray)) ++open;
     }
   }
-  return traced.scene.material_of(sp.triangle).kd * (static_cast<float>(open) / static_cast<float>(rays));
+  return sp.albedo * (static_cast<float>(open) / static_cast<float>(rays));
 }
 
 float ambient_occlusion_radius(const TracedScene& traced, const RenderSettings& settings) {

@@ -15,7 +15,8 @@ namespace lueur {
 /// What one pixel's primary ray hit, beside its triangle: read only once the triangle matches.
 struct ScreenPixel {
   Vec3 position{0.0f};
-  Vec3 l1{0.0f};  ///< this frame's L1 toward the camera (diffuse part only with reuse_diffuse_only)
+  Vec3 l1{0.0f};      ///< this frame's L1 toward the camera (diffuse part only with reuse_diffuse_only)
+  Vec3 albedo{0.0f};  ///< the diffuse albedo at `position`: a bounce hit beside it on a colour map rescales l1
 };
 
 /// What the primary rays of the current frame saw: the screen that L2 reuses. The triangles have an array of their

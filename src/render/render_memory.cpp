@@ -22,7 +22,7 @@ uint64_t render_memory_bytes(const RenderSettings& settings) {
   const uint64_t store_bytes = store ? static_cast<uint64_t>(std::max(settings.cache_mb, 0)) << 20 : 0;
   const uint64_t records =
       store ? (1 + static_cast<uint64_t>(std::max(settings.l2_rays, 0))) * sizeof(L1CacheRecord) : 0;
-  const uint64_t frame = layers * sizeof(Vec3) + sizeof(SurfacePoint) + sizeof(uint32_t) + 3 * sizeof(Vec3) + records;
+  const uint64_t frame = layers * sizeof(Vec3) + sizeof(SurfacePoint) + sizeof(uint32_t) + 4 * sizeof(Vec3) + records;
   // Saving: every layer averaged, the shown image, and the EXR channel planes, its encoder's copy and its output.
   const uint64_t output = layers * kRgb + kRgb + 3 * (layers + 1) * kRgb;
   constexpr uint64_t kProcess = uint64_t{64} << 20;  // code, thread stacks, allocator slack

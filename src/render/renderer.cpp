@@ -88,6 +88,7 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
   out.hits[i] = sp;
   out.screen.triangle[i] = hit.triangle;
   out.screen.pixels[i].position = sp.position;
+  out.screen.pixels[i].albedo = sp.albedo;
   const Material& material = traced.scene.material_of(hit.triangle);
   if (le) set_layer(out, Layer::kLe, i, ((sp.front_face ? material.ke : Vec3(0.0f)) + extra_emission) / le_rays);
 

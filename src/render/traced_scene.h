@@ -28,6 +28,7 @@ struct SurfacePoint {
   Vec3 geometric_normal;  ///< unit, on the side of `wo`
   Vec3 shading_normal;    ///< unit, on the same side as the geometric normal
   Vec3 wo;                ///< unit direction back along the incoming ray
+  Vec3 albedo{0.0f};      ///< the diffuse albedo here: the material's Kd, or its colour map at the hit
   uint32_t triangle = kNoHit;
   bool front_face = true;  ///< the ray arrived on the side the triangle's winding faces (the emitting side)
 };

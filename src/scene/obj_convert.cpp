@@ -64,6 +64,14 @@ void gather_positions(const tinyobj::attrib_t& attrib, Scene& scene) {
     scene.positions.emplace_back(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
 }
 
+/// OBJ's vt lines (u and v; a third value is ignored). Values are kept as written: the texture lookup wraps them
+/// and reads non-finite ones as 0.
+void gather_texcoords(const tinyobj::attrib_t& attrib, Scene& scene) {
+  const size_t count = attrib.texcoords.size() / 2;
+  scene.texcoords.reserve(count);
+  for (size_t i = 0; i < count; ++i) scene.texcoords.emplace_back(attrib.texcoords[2 * i], attrib.texcoords[2 * i + 1]);
+}
+
 /// File normals, normalised; unusable ones (zero, NaN, overflow) leave their corners on the geometric normal.
 /// Returns, per file normal, its index in scene.normals or kNoNormal.
 std::vector<uint32_t> gather_normals(const tinyobj::attrib_t& attrib, const std::string& label, Scene& scene,
@@ -114,6 +122,8 @@ MaterialTable gather_materials(const std::vector<tinyobj::material_t>& file_mate
     material.ks = Vec3(m.specular[0], m.specular[1], m.specular[2]);
     material.ke = Vec3(m.emission[0], m.emission[1], m.emission[2]);
     material.ns = m.shininess;
+    material.diffuse_map = m.diffuse_texname;
+    material.alpha_map = m.alpha_texname;
     if (entries_match) {
       const MtlEntry& entry = mtl_entries[named];
       if (entry.single_value[0]) material.kd = Vec3(material.kd.r);
@@ -151,6 +161,7 @@ void gather_triangles(const tinyobj::ObjReader& reader, const std::vector<uint32
                       const std::string& label, MaterialTable& materials, Scene& scene) {
   const size_t vertex_count = reader.GetAttrib().vertices.size() / 3;
   const size_t normal_count = normal_remap.size();
+  const size_t texcoord_count = scene.texcoords.size();
   auto checked_index = [&](int index, size_t count) -> uint32_t {
     // The validator makes this unreachable; it guards against tinyobjloader disagreeing with it.
     if (index < 0 || static_cast<size_t>(index) >= count)
@@ -168,6 +179,7 @@ void gather_triangles(const tinyobj::ObjReader& reader, const std::vector<uint32
           const tinyobj::index_t& index = mesh.indices[offset + c];
           tri.v[c] = checked_index(index.vertex_index, vertex_count);
           if (index.normal_index >= 0) tri.n[c] = normal_remap[checked_index(index.normal_index, normal_count)];
+          if (index.texcoord_index >= 0) tri.t[c] = checked_index(index.texcoord_index, texcoord_count);
         }
         const int id = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
         const int64_t mapped = id >= 0 && static_cast<size_t>(id) < materials.remap.size() ? materials.remap[id] : -1;
@@ -292,6 +304,7 @@ LoadedScene build_scene(const std::string& obj_text, const std::string& label, c
   scene.name = scene_name;
   gather_positions(reader.GetAttrib(), scene);
   const std::vector<uint32_t> normal_remap = gather_normals(reader.GetAttrib(), label, scene, warnings);
+  gather_texcoords(reader.GetAttrib(), scene);
   MaterialTable materials = gather_materials(reader.GetMaterials(), mtl.entries, scene);
   gather_triangles(reader, normal_remap, label, materials, scene);
 

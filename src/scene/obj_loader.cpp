@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -19,6 +20,7 @@
 #include "scene/obj_convert.h"
 #include "scene/obj_text.h"
 #include "scene/obj_validate.h"
+#include "scene/scene_textures.h"
 
 namespace lueur {
 namespace {
@@ -162,7 +164,21 @@ LoadedScene load_obj(const std::string& path, const LoadOptions& options) {
   std::vector<std::string> mtl_warnings;
   std::vector<MtlSource> sources = read_mtl_files(path, path, summary, budget, mtl_warnings);
   summary.warnings.insert(summary.warnings.end(), mtl_warnings.begin(), mtl_warnings.end());
-  return obj::build_scene(text, path, scene_name_of(path), summary, sources, options);
+  const uint64_t scene_bytes =
+      scene_memory_bytes(text.size(), summary.vertices, summary.normals, summary.texcoords, summary.expected_triangles);
+  LoadedScene loaded = obj::build_scene(text, path, scene_name_of(path), summary, sources, options);
+  // Texture names are relative to the MTL file that gives them; MTL files are named relative to the OBJ's folder.
+  namespace fs = std::filesystem;
+  const fs::path directory = fs::path(path).parent_path();
+  std::vector<std::string> directories{directory.empty() ? std::string(".") : directory.string()};
+  for (const MtlSource& source : sources) {
+    const fs::path mtl_directory = (directory / source.label).parent_path();
+    if (std::find(directories.begin(), directories.end(), mtl_directory.string()) == directories.end())
+      directories.push_back(mtl_directory.string());
+  }
+  const uint64_t texture_budget = budget.bytes > scene_bytes ? budget.bytes - scene_bytes : 0;
+  obj::load_scene_textures(loaded.scene, directories, texture_budget, path, loaded.warnings);
+  return loaded;
 }
 
 LoadedScene load_obj_from_text(const std::string& obj_text, const std::string& mtl_text, const std::string& name,
@@ -178,7 +194,9 @@ LoadedScene load_obj_from_text(const std::string& obj_text, const std::string& m
     strip_bom(source.text);
     sources.push_back(std::move(source));
   }
-  return obj::build_scene(text, name, scene_name_of(name), summary, sources, options);
+  LoadedScene loaded = obj::build_scene(text, name, scene_name_of(name), summary, sources, options);
+  obj::load_scene_textures(loaded.scene, {}, 0, name, loaded.warnings);
+  return loaded;
 }
 
 }  // namespace lueur

@@ -45,6 +45,24 @@ Vec3 Scene::point(uint32_t tri, float u, float v) const {
   return (1.0f - u - v) * positions[t.v[0]] + u * positions[t.v[1]] + v * positions[t.v[2]];
 }
 
+Vec2 Scene::texcoord(uint32_t tri, float u, float v) const {
+  const Triangle& t = triangles[tri];
+  if (t.t[0] == kNoTexcoord || t.t[1] == kNoTexcoord || t.t[2] == kNoTexcoord) return Vec2(0.0f);
+  return (1.0f - u - v) * texcoords[t.t[0]] + u * texcoords[t.t[1]] + v * texcoords[t.t[2]];
+}
+
+bool Scene::has_cutouts() const {
+  for (const Material& m : materials)
+    if (m.alpha_texture >= 0) return true;
+  return false;
+}
+
+uint64_t Scene::texture_bytes() const {
+  uint64_t bytes = 0;
+  for (const Texture& t : textures) bytes += t.bytes();
+  return bytes;
+}
+
 void collect_emitters(Scene& scene) {
   scene.emitters.clear();
   for (uint32_t i = 0; i < scene.triangles.size(); ++i) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/ray.h"
+#include "scene/texture.h"
 
 namespace lueur {
 
@@ -16,18 +17,25 @@ struct Material {
   Vec3 ks{0.0f};    ///< specular albedo; zero selects the report's Blinn-Phong mix with K
   float ns = 0.0f;  ///< Blinn-Phong exponent
   Vec3 ke{0.0f};    ///< emitted radiance; any positive channel makes the material an area light
+  /// Index in Scene::textures of the colour map that replaces kd (map_Kd), or -1.
+  int32_t diffuse_texture = -1;
+  /// Index in Scene::textures of the cutout mask (map_d): where it covers less than half, the surface is a hole.
+  int32_t alpha_texture = -1;
+  std::string diffuse_map, alpha_map;  ///< the MTL's map_Kd and map_d file names, as written ("" when absent)
 
   bool emissive() const { return ke.r > 0.0f || ke.g > 0.0f || ke.b > 0.0f; }
   bool has_specular() const { return ks.r > 0.0f || ks.g > 0.0f || ks.b > 0.0f; }
 };
 
 inline constexpr uint32_t kNoNormal = 0xffffffffu;
+inline constexpr uint32_t kNoTexcoord = 0xffffffffu;
 
 /// One triangle: three position indices, three shading-normal indices (kNoNormal: use the geometric normal)
 /// and a material index. Counter-clockwise winding defines the geometric normal and the emitting side.
 struct Triangle {
   uint32_t v[3] = {0, 0, 0};
   uint32_t n[3] = {kNoNormal, kNoNormal, kNoNormal};
+  uint32_t t[3] = {kNoTexcoord, kNoTexcoord, kNoTexcoord};  ///< texture coordinates, referenced by index
   uint32_t material = 0;
 };
 
@@ -36,6 +44,8 @@ struct Scene {
   std::vector<Vec3> normals;  ///< unit shading normals, referenced by Triangle::n
   std::vector<Triangle> triangles;
   std::vector<Material> materials;
+  std::vector<Vec2> texcoords;     ///< OBJ's vt, referenced by Triangle::t
+  std::vector<Texture> textures;   ///< referenced by Material::diffuse_texture and alpha_texture
   std::vector<uint32_t> emitters;  ///< indices of triangles whose material emits and whose area is positive
   std::string name;                ///< shown in messages and saved with images
 
@@ -47,6 +57,24 @@ struct Scene {
   /// Shading normal at barycentrics (u, v); falls back to the geometric normal.
   Vec3 shading_normal(uint32_t tri, float u, float v) const;
   Vec3 point(uint32_t tri, float u, float v) const;
+  /// Texture coordinate at barycentrics (u, v); (0, 0) on a triangle without them.
+  Vec2 texcoord(uint32_t tri, float u, float v) const;
+  /// Diffuse albedo at barycentrics (u, v): the colour map where the material has one, else Kd.
+  Vec3 albedo(uint32_t tri, float u, float v) const {
+    const Material& m = material_of(tri);
+    if (m.diffuse_texture < 0) return m.kd;
+    return sample_albedo(textures[static_cast<size_t>(m.diffuse_texture)], texcoord(tri, u, v));
+  }
+  /// Whether the point at barycentrics (u, v) is a hole of its material's cutout mask: no ray stops there.
+  bool cut_out(uint32_t tri, float u, float v) const {
+    const Material& m = material_of(tri);
+    if (m.alpha_texture < 0) return false;
+    return sample_coverage(textures[static_cast<size_t>(m.alpha_texture)], texcoord(tri, u, v)) < 0.5f;
+  }
+  /// Whether any material has a cutout mask (the accelerators then filter their hits through cut_out).
+  bool has_cutouts() const;
+  /// Bytes the decoded textures hold.
+  uint64_t texture_bytes() const;
 };
 
 /// Appends a planar quad a b c d as two triangles (a b c) and (a c d) with `material`; its geometric normal faces

@@ -1,7 +1,10 @@
 // libFuzzer target: OBJ + MTL text all the way to a rendered 16x16 frame, the path a scene from the internet
 // takes. Input: the OBJ text, optionally followed by a line "#mtl" and the MTL text that its mtllib stands for
-// ("#mtl" is an OBJ comment, so any OBJ file is a valid input as it is). A few input-derived bits pick the light
-// strategy, reuse mode and normals, so every branch of the renderer is reachable.
+// ("#mtl" is an OBJ comment, so any OBJ file is a valid input as it is), optionally followed by a line "#image" and
+// the bytes of an image file (PNG, JPEG, ...): decoded as a texture file would be, it becomes the colour map and the
+// cutout mask of every material that names a map_Kd or map_d, so that image decoding, texture sampling and the
+// traversals' cutout filter all meet hostile data. A few input-derived bits pick the light strategy, reuse mode and
+// normals, so every branch of the renderer is reachable.
 // Refusal (SceneError) is a correct outcome; any other exception, a crash, a sanitizer report, a leak, a hang
 // or a non-finite value in the film is a finding. Run it with scripts/fuzz.sh.
 #include <cmath>
@@ -17,6 +20,7 @@
 #include "render/thread_pool.h"
 #include "render/traced_scene.h"
 #include "scene/obj_loader.h"
+#include "scene/texture.h"
 
 namespace {
 
@@ -37,7 +41,12 @@ uint64_t fnv1a(std::string_view bytes) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  const std::string_view input(reinterpret_cast<const char*>(data), size);
+  std::string_view input(reinterpret_cast<const char*>(data), size);
+  std::string_view image;
+  if (const size_t at = input.find("\n#image\n"); at != std::string_view::npos) {
+    image = input.substr(at + 8);
+    input = input.substr(0, at + 1);
+  }
   std::string_view obj = input, mtl;
   if (input.substr(0, 5) == "#mtl\n") {
     obj = {};
@@ -56,6 +65,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     loaded = load_obj_from_text(std::string(obj), std::string(mtl), "fuzz.obj", load);
   } catch (const SceneError&) {
     return 0;  // refused with a message: a correct outcome
+  }
+
+  // The image stands for every texture file the materials name (loading from text reads no file).
+  Texture texture;
+  if (!image.empty() && decode_texture(std::string(image), uint64_t{16} << 20, texture).empty()) {
+    Scene& scene = loaded.scene;
+    scene.textures.push_back(std::move(texture));
+    for (Material& m : scene.materials) {
+      if (!m.diffuse_map.empty()) m.diffuse_texture = 0, m.kd = Vec3(1.0f);
+      if (!m.alpha_map.empty()) m.alpha_texture = 0;
+    }
   }
 
   RenderSettings settings;

@@ -1,0 +1,20 @@
+// Reading the texture files a scene's materials name (map_Kd, map_d) into Scene::textures. Internal to src/scene;
+// depends on scene and texture only.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace lueur::obj {
+
+/// Loads every texture the materials name, each file once, looking for it in `directories` in order (the OBJ's, then
+/// each MTL file's). A texture that is missing, unreadable or too large for `byte_limit` (all textures together) is
+/// one warning, labelled `label`; its material then falls back to grey (map_Kd) or to no cutout (map_d). With no
+/// directories (a scene given as text) no file is read, and each named texture is such a warning.
+void load_scene_textures(Scene& scene, const std::vector<std::string>& directories, uint64_t byte_limit,
+                         const std::string& label, std::vector<std::string>& warnings);
+
+}  // namespace lueur::obj

@@ -1,0 +1,41 @@
+// Image textures of MTL materials: a diffuse colour map (map_Kd) and an alpha cutout mask (map_d), decoded once into
+// 8-bit RGBA and sampled with bilinear filtering and repeat wrapping. Depends on core only (stb_image stays inside
+// texture.cpp).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+
+namespace lueur {
+
+/// A decoded image, rows from the top, four bytes per texel (red, green, blue, alpha).
+struct Texture {
+  std::string name;  ///< the path as the MTL file wrote it, for messages
+  int width = 0, height = 0;
+  /// The file had an alpha channel: cutouts read it. A file without one (a grey mask) is read by its red channel.
+  bool has_alpha = false;
+  std::vector<uint8_t> rgba;
+
+  uint64_t bytes() const { return rgba.size(); }
+};
+
+/// The linear albedo at texture coordinate `uv` (OBJ's convention: v = 0 at the bottom row): the four nearest texel
+/// centres, decoded from sRGB and blended bilinearly, with the image repeated in both directions.
+Vec3 sample_albedo(const Texture& texture, Vec2 uv);
+
+/// The cutout mask's coverage at `uv`, in [0, 1], blended bilinearly like sample_albedo: alpha where the file has
+/// it, red otherwise. Below 0.5 is a hole.
+float sample_coverage(const Texture& texture, Vec2 uv);
+
+/// Decodes the bytes of a PNG or JPEG (anything stb_image reads) into `out`, refusing images whose texels would take
+/// more than `byte_limit` bytes before decoding them. Returns an empty string on success, otherwise why it failed.
+std::string decode_texture(const std::string& bytes, uint64_t byte_limit, Texture& out);
+
+/// Reads the file at `path` and decodes it (decode_texture). Returns an empty string on success, otherwise why it
+/// failed, in one line that the caller prefixes with the file's name.
+std::string load_texture(const std::string& path, uint64_t byte_limit, Texture& out);
+
+}  // namespace lueur
