@@ -1,4 +1,5 @@
-// The default light the loader adds to scenes without emitters: where it is, which way it faces, and the irradiance
+// The single overhead light the benchmarks add to scenes without emitters (add_default_light; the loader adds the
+// light rig instead, tested in test_light_rig.cpp): where it is, which way it faces, and the irradiance
 // it gives, compared with the exact value from Lambert's polygon formula (test::lambert_irradiance, whose own checks
 // are here too: a closed form, two limits and a brute-force quadrature). Uses the scene layer only.
 #include <gtest/gtest.h>
@@ -187,9 +188,13 @@ TEST(DefaultLight, FacesDownAboveTheSceneWithTheDesignedIrradiance) {
 }
 
 TEST(DefaultLight, FlatSceneGetsLambertsExactIrradiance) {
-  Scene scene = load_obj_from_text("v -1 0 -1\nv -1 0 1\nv 1 0 1\nv 1 0 -1\nf 1 2 3 4\n", "", "floor.obj").scene;
+  LoadOptions no_rig;
+  no_rig.light_rig = false;
+  Scene scene =
+      load_obj_from_text("v -1 0 -1\nv -1 0 1\nv 1 0 1\nv 1 0 -1\nf 1 2 3 4\n", "", "floor.obj", no_rig).scene;
+  add_default_light(scene);
   ASSERT_EQ(scene.emitters.size(), 2u);
-  // The floor's box is 2 x 0 x 2, its diagonal 2 sqrt 2: the loader's light is a square of half-side a = sqrt 2 / 2
+  // The floor's box is 2 x 0 x 2, its diagonal 2 sqrt 2: the default light is a square of half-side a = sqrt 2 / 2
   // at height h = sqrt 2, with Le = pi h^2 / (2a)^2 = pi. As wide as it is high, its cosines take their share:
   // E = 4 Le s atan(s) with s = a / sqrt(a^2 + h^2) = 1 / sqrt 5, about 0.752 pi.
   const double s = 1.0 / std::sqrt(5.0), pi = 3.14159265358979323846;

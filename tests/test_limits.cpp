@@ -94,7 +94,7 @@ std::string grid_obj(int n) {
 TEST(SceneBudget, TooManyVerticesForTheBudgetIsRefusedAtTheLine) {
   const std::string obj = grid_obj(100);  // 10000 vertices, 19602 triangles
   LoadOptions options;
-  EXPECT_EQ(load_obj_from_text(obj, "", "grid.obj", options).scene.triangles.size(), 19602u + 2u);
+  EXPECT_EQ(load_obj_from_text(obj, "", "grid.obj", options).scene.triangles.size(), 19602u + 12u);
   options.memory = MemoryBudget{scene_memory_bytes(obj.size(), 5000, 0, 0, 0), "a test budget"};
   try {
     load_obj_from_text(obj, "", "grid.obj", options);

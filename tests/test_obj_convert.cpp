@@ -31,8 +31,9 @@ TEST(SceneLoader, QuadBecomesTwoCounterClockwiseTriangles) {
       load_obj_from_text("v 0 0 0\nv 0 0 1\nv 1 0 1\nv 1 0 0\nf 1 2 3 4\n", "", "quad.obj", flat_shading());
   const Scene& scene = loaded.scene;
   EXPECT_EQ(scene.name, "quad");
-  // The default light adds two more triangles above the quad.
-  ASSERT_EQ(scene.triangles.size(), 4u);
+  // The default light rig adds the twelve triangles of its sky after the quad.
+  ASSERT_EQ(scene.triangles.size(), 14u);
+  EXPECT_EQ(scene.rig_begin, 2u);
   float area = 0.0f;
   for (uint32_t t = 0; t < 2; ++t) {
     const Vec3 n = unit(scene.geometric_normal_raw(t));
@@ -42,7 +43,8 @@ TEST(SceneLoader, QuadBecomesTwoCounterClockwiseTriangles) {
   }
   EXPECT_NEAR(area, 1.0f, 1e-6f);
   const Box3 box = scene.bounds();
-  EXPECT_GT(box.hi.y, 0.0f);  // includes the light
+  EXPECT_EQ(box.hi.y, 0.0f);  // the model's: the light rig is left out
+  EXPECT_EQ(box.hi.x, 1.0f);
   EXPECT_NEAR(scene.point(0, 0.0f, 0.0f).x, scene.positions[scene.triangles[0].v[0]].x, 0.0f);
 }
 
@@ -88,7 +90,7 @@ TEST(SceneLoader, FileNormalsAreUsedAndNormalised) {
                                                     "f 1//1 2//3 3//1\n",  // a zero normal: geometric fallback
                                                 "", "normals.obj");
   const Scene& scene = loaded.scene;
-  ASSERT_EQ(scene.triangles.size(), 4u);
+  ASSERT_EQ(scene.triangles.size(), 14u);  // and the light rig's twelve
   EXPECT_EQ(scene.shading_normal(0, 0.0f, 0.0f), Vec3(0.0f, 0.0f, 1.0f));
   const Vec3 at_corner1 = scene.shading_normal(0, 1.0f, 0.0f);
   EXPECT_NEAR(at_corner1.x, std::sqrt(0.5f), 1e-6f);
@@ -110,10 +112,10 @@ TEST(SceneWarnings, MissingMtlUnknownMaterialAndBadValues) {
     const LoadedScene loaded = load_obj(path);
     EXPECT_TRUE(has_warning(loaded, "absent.mtl")) << all_warnings(loaded);
     EXPECT_TRUE(has_warning(loaded, "No such file or directory")) << all_warnings(loaded);
-    ASSERT_EQ(loaded.scene.triangles.size(), 3u);
+    ASSERT_EQ(loaded.scene.triangles.size(), 1u + 12u);  // and the light rig's sky
     EXPECT_EQ(loaded.scene.material_of(0).kd, Vec3(0.5f));
     EXPECT_FALSE(loaded.scene.material_of(0).emissive());
-    EXPECT_TRUE(has_warning(loaded, "no emitter: added a default area light above the scene"));
+    EXPECT_TRUE(has_warning(loaded, "no emitter: added the default light rig, a sky box"));
   }
   {
     write_text(dir, "mats.mtl",

@@ -41,6 +41,9 @@ Settings unusual_settings() {
   s.layer = Layer::kL1;
   s.display = {1.25f, ToneMap::kAces};
   s.smooth_normals = false;
+  s.light_rig = false;
+  s.light_rig_scale = 0.5f;
+  s.start_view = StartView::kOutside;
   s.accel = AccelKind::kEmbree;
   s.frames = 2;
   s.frame_limit = 100;

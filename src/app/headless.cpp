@@ -97,9 +97,10 @@ int run_headless(const AppOptions& options) {
   const int frames = options.settings.frames;
   const MemoryBudget scene_memory = reserve_render_memory(settings);
   const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
-  const OpenedScene opened =
-      open_scene(options.scene_path, options.settings.smooth_normals, aspect, scene_memory, options.settings.accel);
+  const OpenedScene opened = open_scene(options.scene_path, scene_options_of(options.settings), aspect, scene_memory);
   for (const std::string& w : opened.warnings) std::fprintf(stderr, "lueur: warning: %s\n", w.c_str());
+  if (!options.settings.camera)
+    for (const std::string& note : opened.notes) std::fprintf(stderr, "lueur: %s\n", note.c_str());
 
   const Camera camera = make_camera(camera_of(options.settings, opened.default_view), settings.width, settings.height);
 

@@ -7,13 +7,13 @@
 
 namespace lueur {
 
-SceneLoading::SceneLoading(std::string path, bool smooth_normals, float aspect, AccelKind accel)
+SceneLoading::SceneLoading(std::string path, const SceneOptions& options, float aspect)
     : path_(std::move(path)), start_(std::chrono::steady_clock::now()) {
-  thread_ = std::thread([this, smooth_normals, aspect, accel] {
+  thread_ = std::thread([this, options, aspect] {
     std::optional<OpenedScene> result;
     std::string error;
     try {
-      result = open_scene(path_, smooth_normals, aspect, available_memory(), accel, [this](const std::string& stage) {
+      result = open_scene(path_, options, aspect, available_memory(), [this](const std::string& stage) {
         std::lock_guard lock(mutex_);
         stage_ = stage;
       });

@@ -14,7 +14,7 @@ namespace lueur {
 
 class SceneLoading {
  public:
-  SceneLoading(std::string path, bool smooth_normals, float aspect, AccelKind accel);
+  SceneLoading(std::string path, const SceneOptions& options, float aspect);
   ~SceneLoading();
   SceneLoading(const SceneLoading&) = delete;
   SceneLoading& operator=(const SceneLoading&) = delete;

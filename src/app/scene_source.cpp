@@ -1,12 +1,63 @@
+// Opening a scene: loading or building it, preparing it for tracing, and choosing the view it opens with.
 #include "app/scene_source.h"
 
+#include <limits>
+
 #include "scene/default_scene.h"
+#include "scene/light_rig.h"
 #include "scene/obj_loader.h"
 
 namespace lueur {
 
-OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspect, const MemoryBudget& memory,
-                       AccelKind accel, const std::function<void(const std::string& stage)>& on_stage) {
+SceneOptions scene_options_of(const Settings& settings) {
+  SceneOptions options;
+  options.smooth_normals = settings.smooth_normals;
+  options.light_rig = settings.light_rig;
+  options.light_rig_scale = settings.light_rig_scale;
+  options.start_view = settings.start_view;
+  options.accel = settings.accel;
+  return options;
+}
+
+namespace {
+
+/// Rays through the scene's accelerator, for find_enclosure.
+RayCast accelerator_ray_cast(const TracedScene& traced) {
+  return [&traced](const Vec3& origin, const Vec3& dir, bool& front) {
+    Ray ray;
+    ray.origin = origin;
+    ray.dir = dir;
+    // The model only: the light rig (a ceiling panel right above the probe) is passed through.
+    for (;;) {
+      const Hit hit = intersect_closest(traced.accel, ray);
+      if (!hit.found()) return std::numeric_limits<float>::infinity();
+      if (hit.triangle < traced.scene.rig_begin) {
+        front = seen_from_front(traced.scene, hit.triangle, dir);
+        return hit.t;
+      }
+      ray.tmin = hit.t;
+    }
+  };
+}
+
+/// Picks the view the scene opens with, and says why where it matters.
+void choose_view(const std::string& label, StartView start, OpenedScene& opened) {
+  const bool inside = opened.inside_view && start != StartView::kOutside;
+  opened.default_view = inside ? *opened.inside_view : opened.outside_view;
+  if (inside)
+    opened.notes.push_back(label + " is a closed room: the camera starts inside it (--camera outside, or key O in " +
+                           "the window, for the view from outside)");
+  else if (opened.inside_view)
+    opened.notes.push_back(label + " is a closed room: from outside the camera sees its walls (--camera inside, or " +
+                           "key I in the window, for the view from inside)");
+  else if (start == StartView::kInside)
+    opened.warnings.push_back(label + " is not a closed room: no view from inside, the camera starts outside");
+}
+
+}  // namespace
+
+OpenedScene open_scene(const std::string& path, const SceneOptions& options, float aspect, const MemoryBudget& memory,
+                       const std::function<void(const std::string& stage)>& on_stage) {
   const auto stage = [&](const std::string& what) {
     if (on_stage) on_stage(what);
   };
@@ -14,20 +65,28 @@ OpenedScene open_scene(const std::string& path, bool smooth_normals, float aspec
   Scene scene;
   if (path.empty()) {
     scene = make_default_scene();
-    if (smooth_normals) compute_smooth_normals(scene);
-    opened.default_view = default_scene_camera();
+    if (options.smooth_normals) compute_smooth_normals(scene);
+    opened.outside_view = default_scene_camera();
   } else {
     stage("reading " + path);
     LoadOptions load_options;
-    load_options.smooth_normals = smooth_normals;
+    load_options.smooth_normals = options.smooth_normals;
     load_options.memory = memory;
+    load_options.light_rig = options.light_rig;
+    load_options.light_rig_scale = options.light_rig_scale;
     LoadedScene loaded = load_obj(path, load_options);
     scene = std::move(loaded.scene);
     opened.warnings = std::move(loaded.warnings);
-    opened.default_view = frame_box(scene.bounds(), 45.0f, aspect);
+    opened.outside_view = frame_box(scene.bounds(), 45.0f, aspect);
   }
   stage("building the BVH of " + std::to_string(scene.triangles.size()) + " triangles");
-  opened.traced = prepare_scene(std::move(scene), accel);
+  opened.traced = prepare_scene(std::move(scene), options.accel);
+  if (!path.empty()) {
+    const TracedScene& traced = *opened.traced;
+    if (const std::optional<Enclosure> room = find_enclosure(traced.scene.bounds(), accelerator_ray_cast(traced)))
+      opened.inside_view = inside_view(traced.scene.bounds(), *room);
+  }
+  choose_view(path.empty() ? std::string("the default scene") : path, options.start_view, opened);
   return opened;
 }
 

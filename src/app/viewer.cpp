@@ -119,7 +119,7 @@ class Viewer {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
     const float aspect = w > 0 && h > 0 ? static_cast<float>(w) / static_cast<float>(h) : 1.0f;
-    loading_ = std::make_unique<SceneLoading>(path, panel_.settings.smooth_normals, aspect, panel_.settings.accel);
+    loading_ = std::make_unique<SceneLoading>(path, scene_options_of(panel_.settings), aspect);
     loading_is_initial_ = initial;
     scene_settings_ = panel_.settings;
   }
@@ -143,9 +143,11 @@ class Viewer {
     if (!keep_camera) panel_.settings.camera = home_camera_;
     panel_.settings.up.reset();  // the window moves one camera, its up vector included
     describe_scene(panel_, *scene_.traced);
-    std::string warnings;
-    for (const std::string& w : scene_.warnings) warnings += (warnings.empty() ? "" : "; ") + w;
-    if (!warnings.empty()) set_message("warning: " + warnings, false);
+    panel_.closed_room = scene_.inside_view.has_value();
+    std::string message;
+    for (const std::string& w : scene_.warnings) message += (message.empty() ? "warning: " : "; ") + w;
+    for (const std::string& note : scene_.notes) message += (message.empty() ? "" : "; ") + note;
+    if (!message.empty()) set_message(message, false);
     tracer_.set_scene(scene_.traced);
   }
 
@@ -211,10 +213,15 @@ class Viewer {
     if (forward != 0.0f || right != 0.0f || up != 0.0f)
       camera = fly(camera, forward * speed, right * speed, up * speed);
     const bool f = down(GLFW_KEY_F) > 0.0f, r = down(GLFW_KEY_R) > 0.0f;
+    const bool i = down(GLFW_KEY_I) > 0.0f, o = down(GLFW_KEY_O) > 0.0f;
     if (f && !f_was_down_ && scene_.traced) camera = frame_bounds(camera, scene_.traced->scene.bounds(), aspect());
     if (r && !r_was_down_ && scene_.traced) camera = home_camera_;
+    if (i && !i_was_down_ && scene_.inside_view) camera = *scene_.inside_view;
+    if (o && !o_was_down_ && scene_.traced) camera = scene_.outside_view;
     f_was_down_ = f;
     r_was_down_ = r;
+    i_was_down_ = i;
+    o_was_down_ = o;
   }
 
   float aspect() const {
@@ -241,6 +248,8 @@ class Viewer {
     if (scene_.traced && a.frame_scene && panel_.settings.camera)
       panel_.settings.camera = frame_bounds(*panel_.settings.camera, scene_.traced->scene.bounds(), aspect());
     if (scene_.traced && a.reset_camera) panel_.settings.camera = home_camera_;
+    if (a.inside_view && scene_.inside_view) panel_.settings.camera = *scene_.inside_view;
+    if (a.outside_view && scene_.traced) panel_.settings.camera = scene_.outside_view;
   }
 
   /// A change to a setting that shapes the traced scene (smooth normals, the accelerator: the table's kReload)
@@ -416,7 +425,7 @@ class Viewer {
   uint64_t display_frames_ = 0;
   double frame_seconds_ = 0.0;
   double last_cursor_x_ = 0.0, last_cursor_y_ = 0.0, last_key_time_ = 0.0;
-  bool dragging_ = false, f_was_down_ = false, r_was_down_ = false;
+  bool dragging_ = false, f_was_down_ = false, r_was_down_ = false, i_was_down_ = false, o_was_down_ = false;
   // Figures for the state file: display frame intervals and the time from a change to its first frame on screen.
   std::vector<double> frame_intervals_ms_, restart_latencies_ms_;
   Clock::time_point previous_frame_start_{}, restart_time_{};

@@ -5,6 +5,12 @@
 
 namespace lueur {
 
+/// Whether a surface of this material reflects any light: a black one (an emitter's, or the light rig's) has no L1
+/// to estimate, so no shadow ray is spent on it.
+inline bool reflects_light(const Material& m) {
+  return m.has_specular() || m.diffuse_texture >= 0 || m.kd.r > 0.0f || m.kd.g > 0.0f || m.kd.b > 0.0f;
+}
+
 /// Normalised Blinn-Phong lobe (n + 8) / (8 pi) cos^n(theta_h).
 inline float blinn_phong_lobe(float cos_theta_h, float exponent) {
   if (cos_theta_h <= 0.0f) return 0.0f;

@@ -100,6 +100,7 @@ Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, co
   if (arriving) *arriving = Vec3(0.0f);
   if (table.empty() || options.rays <= 0) return Vec3(0.0f);
   const Material& material = traced.scene.material_of(sp.triangle);
+  if (!reflects_light(material)) return Vec3(0.0f);
   const Vec3 f_diffuse = eval_brdf_diffuse(material, sp.albedo, options.blinn_k);
 
   Vec3 sum(0.0f), diffuse_sum(0.0f), arriving_sum(0.0f);

@@ -227,6 +227,7 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
   if (settings.l2_rays <= 0) return result;
   const Scene& scene = traced.scene;
   const Material& material = scene.material_of(sp.triangle);
+  if (!reflects_light(material)) return result;
 
   DirectLightOptions recompute;
   recompute.strategy = settings.lights;
@@ -249,6 +250,9 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
       ++result.bounce_rays;
       const Hit hit = intersect_closest(traced.accel, ray);
       if (!hit.found()) continue;
+      // A black q (a light, the rig's sky) has L1(q) = 0: nothing to look up, trace or count among the bounce hits
+      // that the screen, the store or a recomputation serve.
+      if (!reflects_light(scene.material_of(hit.triangle))) continue;
       PendingBounce& b = pending.items[static_cast<size_t>(pending_count)];
       b.ray = ray;
       b.hit = hit;
@@ -330,6 +334,7 @@ Vec3 estimate_ambient_occlusion(const TracedScene& traced, const SurfacePoint& s
                                 PixelSampler& sampler, uint64_t first_sample, uint64_t& rays_traced) {
   if (rays <= 0) return Vec3(0.0f);
   int open = 0;
+  if (!reflects_light(traced.scene.material_of(sp.triangle))) return Vec3(0.0f);
   BounceDirections directions(sp);
   for (int batch = 0; batch < rays; batch += kSampleBatch) {
     const int count = std::min(kSampleBatch, rays - batch);

@@ -34,7 +34,7 @@ struct IndirectResult {
   Vec3 from_reused{0.0f};      ///< the part of l2 whose L1(q) came from the screen (report figure 7)
   Vec3 from_recomputed{0.0f};  ///< the part whose L1(q) was traced anew (report figure 8)
   int bounce_rays = 0;         ///< bounce rays traced
-  int bounce_hits = 0;         ///< bounce rays that hit a surface
+  int bounce_hits = 0;         ///< bounce rays that hit a surface that reflects light (a light's own: not counted)
   int reused = 0;              ///< of those, how many took L1 from the screen
   Vec3 from_cached{0.0f};      ///< the part whose L1(q) came from the L1 store
   int cached = 0;              ///< bounce hits that took L1 from the store

@@ -13,6 +13,7 @@
 #include <string_view>
 #include <unordered_set>
 
+#include "scene/light_rig.h"
 #include "scene/obj_text.h"
 
 namespace lueur::obj {
@@ -270,13 +271,18 @@ void assign_shading_normals(const ObjSummary& summary, const LoadOptions& option
   }
 }
 
-/// Fills scene.emitters, adding the default light when the file has no emitter.
-void ensure_emitter(const std::string& label, Scene& scene, std::vector<std::string>& warnings) {
+/// Fills scene.emitters, adding the default light rig when the file has no emitter (and the rig is on).
+void ensure_emitter(const std::string& label, const LoadOptions& options, Scene& scene,
+                    std::vector<std::string>& warnings) {
   collect_emitters(scene);
   if (!scene.emitters.empty()) return;
-  add_default_light(scene);
-  warnings.push_back(label + ": no emitter: added a default area light above the scene");
-  collect_emitters(scene);
+  if (!options.light_rig || !(options.light_rig_scale > 0.0f)) {
+    warnings.push_back(label + ": no emitter, and the default light rig is off: nothing lights the scene");
+    return;
+  }
+  const std::optional<Enclosure> room = find_enclosure(scene.bounds(), brute_force_ray_cast(scene));
+  const std::string what = add_light_rig(scene, room, options.light_rig_scale);
+  warnings.push_back(label + ": no emitter: added the default light rig, " + what);
   // Around 1e20 and beyond, float spacing swallows any light small enough for its area to stay finite.
   if (scene.emitters.empty()) {
     const Box3 box = scene.bounds();
@@ -284,7 +290,7 @@ void ensure_emitter(const std::string& label, Scene& scene, std::vector<std::str
     std::snprintf(extent, sizeof extent, "%g",
                   static_cast<double>(std::max(max_abs_component(box.lo), max_abs_component(box.hi))));
     throw SceneError(label + ": no emitter, and coordinates up to " + extent +
-                     " are too large for float to hold a default light");
+                     " are too large for float to hold a default light rig");
   }
 }
 
@@ -312,7 +318,7 @@ LoadedScene build_scene(const std::string& obj_text, const std::string& label, c
   explain_default_material(materials, summary, label, warnings);
   report_degenerate_triangles(scene, label, warnings);
   assign_shading_normals(summary, options, scene);
-  ensure_emitter(label, scene, warnings);
+  ensure_emitter(label, options, scene, warnings);
   return result;
 }
 

@@ -31,6 +31,10 @@ struct LoadOptions {
   /// Memory the loaded scene may take; unset: available_memory(). A file whose size or running vertex and
   /// triangle counts would need more is refused with "scene too large" while it is read.
   std::optional<MemoryBudget> memory;
+  /// A scene without emitters gets the default light rig (add_light_rig), its radiance times `light_rig_scale`.
+  /// Off, such a scene stays unlit (and says so).
+  bool light_rig = true;
+  float light_rig_scale = 1.0f;
 };
 
 /// Bytes loading and preparing (BVH, light table) a scene of this size takes at its peak: a conservative

@@ -14,8 +14,9 @@ Box3 Scene::bounds() const {
   // Walks the triangles rather than `positions` so that stray unreferenced vertices do not widen the box
   // that the camera frames and the default light is placed over.
   Box3 box;
-  for (const Triangle& tri : triangles) {
-    for (uint32_t corner = 0; corner < 3; ++corner) box.expand(positions[tri.v[corner]]);
+  const size_t model = std::min<size_t>(triangles.size(), rig_begin);
+  for (size_t t = 0; t < model; ++t) {
+    for (uint32_t corner = 0; corner < 3; ++corner) box.expand(positions[triangles[t].v[corner]]);
   }
   return box;
 }

@@ -48,7 +48,11 @@ struct Scene {
   std::vector<Texture> textures;   ///< referenced by Material::diffuse_texture and alpha_texture
   std::vector<uint32_t> emitters;  ///< indices of triangles whose material emits and whose area is positive
   std::string name;                ///< shown in messages and saved with images
+  /// Triangles from this index on are the default light rig (add_light_rig), not the model: bounds() leaves them out.
+  uint32_t rig_begin = kNoRig;
+  static constexpr uint32_t kNoRig = 0xffffffffu;
 
+  /// The model's bounding box: its triangles' corners, the light rig's left out.
   Box3 bounds() const;
   /// Unnormalised geometric normal (e1 x e2): its length is twice the area.
   Vec3 geometric_normal_raw(uint32_t tri) const;

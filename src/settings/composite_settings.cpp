@@ -175,10 +175,18 @@ Row view_row() {
 }
 
 Row camera_row() {
-  Row row = base_row("camera", "\"ex ey ez tx ty tz fovy\"",
-                     "eye, target and vertical field of view in degrees (default: the scene's view)",
+  Row row = base_row("camera", "\"ex ey ez tx ty tz fovy\"|inside|outside",
+                     "eye, target and vertical field of view in degrees, or the scene's view from inside a closed "
+                     "room or from outside (default: the scene's view)",
                      SettingEffect::kRestart);
   row.parse = [](Settings& s, const std::string& text) {
+    // A named view instead of numbers: the scene's own view from inside or outside (the start-view setting).
+    for (size_t k = 0; k < kStartViewNames.size(); ++k) {
+      if (text != kStartViewNames[k]) continue;
+      s.camera.reset();
+      s.start_view = static_cast<StartView>(k);
+      return;
+    }
     const std::vector<float> v = parse_reals(text, 7);
     CameraSpec camera = s.camera.value_or(CameraSpec{});  // a new eye and target keep the camera's up
     camera.eye = Vec3(v[0], v[1], v[2]);

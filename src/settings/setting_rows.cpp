@@ -80,6 +80,21 @@ std::vector<Row> make_rows() {
   table.push_back(switch_row(
       "smooth-normals", "smooth normals for files that have none", E::kReload,
       [](auto& s) -> auto& { return s.smooth_normals; }, false));
+  table.push_back(switch_row(
+      "light-rig", "light scenes without emitters with the default rig (a sky; in a closed room, a ceiling panel)",
+      E::kReload, [](auto& s) -> auto& { return s.light_rig; }, false));
+  Row rig_scale = real_row(
+      "light-rig-scale", "the default light rig's radiance factor", E::kReload,
+      [](auto& s) -> auto& { return s.light_rig_scale; }, {0, 1e6}, SettingRange{0, 4});
+  rig_scale.always_described = false;
+  table.push_back(rig_scale);
+  Row start_view = enum_row<StartView>(
+      "start-view",
+      "where a scene's camera starts: auto (inside a closed room, else outside framing the model), inside, outside; "
+      "--camera inside and --camera outside say the same",
+      E::kRestart, kStartViewNames, [](auto& s) -> auto& { return s.start_view; });
+  start_view.always_described = false;
+  table.push_back(start_view);
   table.push_back(
       integer_row("seed", "random seed", E::kRestart, [](auto& s) -> auto& { return s.render.seed; }, {0, u64_max}));
   table.push_back(enum_row<SamplerKind>(

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string_view>
 
 #include "accel/accel_kind.h"
 #include "render/camera.h"
@@ -15,6 +16,11 @@
 
 namespace lueur {
 
+/// Where a scene's camera starts: auto (inside a closed room, else the view that frames the model from outside),
+/// inside a closed room, or outside.
+enum class StartView : int { kAuto = 0, kInside = 1, kOutside = 2 };
+inline constexpr std::array<std::string_view, 3> kStartViewNames = {"auto", "inside", "outside"};
+
 struct Settings {
   std::optional<CameraSpec> camera;  ///< unset: the scene's default view
   std::optional<Vec3> up;            ///< when set, the up vector of whichever camera is used
@@ -22,10 +28,13 @@ struct Settings {
   std::array<float, kPassCount> weights = kReportWeights;
   std::optional<Layer> layer;  ///< what is shown; unset: the weighted combination of the passes
   DisplaySettings display;
-  bool smooth_normals = true;           ///< smooth normals for files without them
-  AccelKind accel = AccelKind::kLueur;  ///< which acceleration structure traces the rays
-  int frames = 64;                      ///< frames a headless render accumulates (a saved view: those shown)
-  uint64_t frame_limit = 0;             ///< the window stops accumulating after this many frames; 0: never
+  bool smooth_normals = true;               ///< smooth normals for files without them
+  bool light_rig = true;                    ///< scenes without emitters get the default light rig
+  float light_rig_scale = 1.0f;             ///< the rig's radiance factor
+  StartView start_view = StartView::kAuto;  ///< which default view a scene opens with (unless `camera` is set)
+  AccelKind accel = AccelKind::kLueur;      ///< which acceleration structure traces the rays
+  int frames = 64;                          ///< frames a headless render accumulates (a saved view: those shown)
+  uint64_t frame_limit = 0;                 ///< the window stops accumulating after this many frames; 0: never
   float time_limit = 0.0f;  ///< seconds of tracing after which a render stops (frame in flight included); 0: never
   bool operator==(const Settings&) const = default;
 };

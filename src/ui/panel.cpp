@@ -137,6 +137,12 @@ void sampling_section(PanelModel& m) {
   ao_radius_widgets(m);
   ImGui::Checkbox("Smooth normals", &v.smooth_normals);  // the viewer prepares the scene again
   setting_tooltip("smooth-normals");
+  // The default light rig: only scenes without emitters have one, but turning it on again must stay possible.
+  if (m.has_light_rig || !v.light_rig) {
+    ImGui::Checkbox("Default light rig", &v.light_rig);
+    setting_tooltip("light-rig");
+    if (v.light_rig) setting_slider("Rig brightness", "light-rig-scale", v.light_rig_scale, "%.2f");
+  }
   int seed = static_cast<int>(r.seed & 0x7fffffff);
   if (ImGui::InputInt("Seed", &seed) && seed >= 0) r.seed = static_cast<uint64_t>(seed);
   setting_tooltip("seed");
@@ -207,6 +213,11 @@ void control_section(PanelModel& m, PanelActions& actions) {
   if (ImGui::Button("Frame scene (F)")) actions.frame_scene = true;
   ImGui::SameLine();
   if (ImGui::Button("Reset view (R)")) actions.reset_camera = true;
+  if (m.closed_room) {
+    if (ImGui::Button("Inside the room (I)")) actions.inside_view = true;
+    ImGui::SameLine();
+    if (ImGui::Button("Outside (O)")) actions.outside_view = true;
+  }
 }
 
 void files_section(PanelModel& m, PanelActions& actions) {
@@ -230,6 +241,7 @@ void describe_scene(PanelModel& m, const TracedScene& traced) {
   m.triangles = traced.scene.triangles.size();
   m.emitters = traced.lights.size();
   m.automatic_ao_radius = ambient_occlusion_radius(traced, RenderSettings{});
+  m.has_light_rig = traced.scene.rig_begin != Scene::kNoRig;
 }
 
 PanelActions draw_panel(PanelModel& m) {

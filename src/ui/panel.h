@@ -24,6 +24,8 @@ struct PanelModel {
   std::string scene_name;
   size_t triangles = 0, emitters = 0;
   float automatic_ao_radius = 0.0f;  ///< the AO radius used while the setting is 0 (a tenth of the diagonal)
+  bool has_light_rig = false;        ///< the scene had no emitter and is lit by the default rig
+  bool closed_room = false;          ///< the scene has a view from inside (the caller sets it)
   std::string status;                ///< e.g. "loading bunny.obj: building BVH"; empty when idle
   std::string message;               ///< the last saved path or error
   bool message_is_error = false;
@@ -39,6 +41,7 @@ struct PanelActions {
   bool save_png = false, save_pfm = false, save_exr = false;
   bool save_view = false, load_view = false;
   bool frame_scene = false, reset_camera = false;
+  bool inside_view = false, outside_view = false;  ///< a closed room's views (keys I and O)
 };
 
 /// Sets the panel's figures about the scene being traced: name, triangle and emitter counts, automatic AO radius.

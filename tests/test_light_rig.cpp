@@ -1,0 +1,225 @@
+// The default light rig and closed rooms: a scene without emitters gets a sky (outside) or a ceiling panel (in a
+// closed room) of emissive triangles that every light strategy samples, with the light it was designed to give;
+// closed rooms are told from open scenes and from closed solids, and get a view from inside.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "obj_test_support.h"
+#include "render/direct_light.h"
+#include "render/renderer.h"
+#include "scene/light_rig.h"
+#include "scene/obj_loader.h"
+#include "test_support.h"
+
+namespace lueur {
+namespace {
+
+/// Irradiance at p (normal n) from every emitter of `scene`, by the midpoint rule on a cells x cells split of each
+/// triangle's parallelogram (half of whose cells lie outside it and are skipped), the receiver's cosine clamped at
+/// 0: light from below p's horizon counts for nothing. Independent of the rig's own arithmetic.
+double irradiance_by_quadrature(const Scene& scene, const Vec3& p, const Vec3& n, int cells = 200) {
+  double e = 0.0;
+  for (const uint32_t t : scene.emitters) {
+    const Triangle& tri = scene.triangles[t];
+    const glm::dvec3 a(scene.positions[tri.v[0]]), b(scene.positions[tri.v[1]]), c(scene.positions[tri.v[2]]);
+    const glm::dvec3 e1 = b - a, e2 = c - a, cross = glm::cross(e1, e2);
+    const glm::dvec3 light_normal = glm::normalize(cross);
+    const double cell_area = glm::length(cross) / (static_cast<double>(cells) * cells);
+    for (int i = 0; i < cells; ++i)
+      for (int j = 0; j < cells; ++j) {
+        const double u = (i + 0.5) / cells, v = (j + 0.5) / cells;
+        if (u + v > 1.0) continue;
+        const glm::dvec3 d = a + u * e1 + v * e2 - glm::dvec3(p);
+        const double r2 = glm::dot(d, d), r = std::sqrt(r2);
+        const double cos_receiver = std::max(0.0, glm::dot(glm::dvec3(n), d) / r);
+        const double cos_light = std::max(0.0, -glm::dot(light_normal, d) / r);
+        e += scene.material_of(t).ke.r * cos_receiver * cos_light / r2 * cell_area;
+      }
+  }
+  return e;
+}
+
+/// The corners of a box, OBJ-numbered from `first`: the bottom face, then the top face, each counter-clockwise
+/// seen from above.
+std::string box_vertices(Vec3 lo, Vec3 hi) {
+  std::string text;
+  for (const float y : {lo.y, hi.y})
+    for (const auto& [x, z] : {std::pair{lo.x, lo.z}, {hi.x, lo.z}, {hi.x, hi.z}, {lo.x, hi.z}}) {
+      char line[96];
+      std::snprintf(line, sizeof line, "v %g %g %g\n", static_cast<double>(x), static_cast<double>(y),
+                    static_cast<double>(z));
+      text += line;
+    }
+  return text;
+}
+
+/// The six faces of the box whose corners start at OBJ index `first`, facing out of it (or, reversed, into it).
+std::string box_faces(int first, bool inwards) {
+  const int faces[6][4] = {{1, 2, 3, 4}, {5, 8, 7, 6}, {1, 5, 6, 2}, {4, 3, 7, 8}, {1, 4, 8, 5}, {2, 6, 7, 3}};
+  std::string text;
+  for (const auto& face : faces) {
+    char line[64];
+    const auto corner = [&](int k) { return first - 1 + face[inwards ? 3 - k : k]; };
+    std::snprintf(line, sizeof line, "f %d %d %d %d\n", corner(0), corner(1), corner(2), corner(3));
+    text += line;
+  }
+  return text;
+}
+
+/// A closed room 8 x 3 x 5 whose six walls face inwards, with a table (a closed box facing outwards) in it.
+std::string closed_room_obj() {
+  return box_vertices({0, 0, 0}, {8, 3, 5}) + box_faces(1, true) + box_vertices({5, 0, 2}, {6, 0.8f, 3}) +
+         box_faces(9, false);
+}
+
+/// The same box's six faces turned outwards: a closed solid, not a room.
+std::string closed_solid_obj() { return box_vertices({0, 0, 0}, {8, 3, 5}) + box_faces(1, false); }
+
+TEST(LightRig, OpenSceneGetsASkyThatLightsTheModelAsDesigned) {
+  // A unit quad facing up at the origin: no emitter, not a room.
+  const LoadedScene loaded = load_obj_from_text("v -1 0 -1\nv -1 0 1\nv 1 0 1\nv 1 0 -1\nf 1 2 3 4\n", "", "quad.obj");
+  const Scene& scene = loaded.scene;
+  EXPECT_TRUE(test::has_warning(loaded, "no emitter: added the default light rig, a sky box"))
+      << test::all_warnings(loaded);
+  ASSERT_EQ(scene.rig_begin, 2u);
+  ASSERT_EQ(scene.triangles.size(), 14u);
+  EXPECT_EQ(scene.emitters.size(), 12u);
+  // The model's bounds leave the rig out: the camera frames the quad, not the sky.
+  EXPECT_EQ(scene.bounds().lo, Vec3(-1, 0, -1));
+  EXPECT_EQ(scene.bounds().hi, Vec3(1, 0, 1));
+  // Every sky triangle faces the model.
+  for (uint32_t t = scene.rig_begin; t < scene.triangles.size(); ++t)
+    EXPECT_LT(glm::dot(scene.geometric_normal_raw(t), scene.point(t, 1.0f / 3, 1.0f / 3)), 0.0f) << t;
+  // A white surface facing up at the centre reads about 0.85 (light_rig.h); facing the camera (+z), less.
+  const double up = irradiance_by_quadrature(scene, Vec3(0.0f), Vec3(0, 1, 0)) / kPi;
+  EXPECT_NEAR(up, 0.85, 0.1);
+  const double toward_camera = irradiance_by_quadrature(scene, Vec3(0.0f), Vec3(0, 0, 1)) / kPi;
+  EXPECT_GT(toward_camera, 0.3);
+  EXPECT_LT(toward_camera, up);
+  const double away = irradiance_by_quadrature(scene, Vec3(0.0f), Vec3(0, 0, -1)) / kPi;
+  EXPECT_LT(away, toward_camera);  // the key is behind the camera
+}
+
+TEST(LightRig, ScaleAndOff) {
+  const std::string quad = "v -1 0 -1\nv -1 0 1\nv 1 0 1\nv 1 0 -1\nf 1 2 3 4\n";
+  LoadOptions options;
+  options.light_rig_scale = 2.0f;
+  const LoadedScene twice = load_obj_from_text(quad, "", "quad.obj", options);
+  const LoadedScene once = load_obj_from_text(quad, "", "quad.obj");
+  for (size_t k = 0; k < once.scene.emitters.size(); ++k)
+    EXPECT_FLOAT_EQ(twice.scene.material_of(twice.scene.emitters[k]).ke.r,
+                    2.0f * once.scene.material_of(once.scene.emitters[k]).ke.r);
+  options.light_rig = false;
+  const LoadedScene off = load_obj_from_text(quad, "", "quad.obj", options);
+  EXPECT_TRUE(off.scene.emitters.empty());
+  EXPECT_EQ(off.scene.triangles.size(), 2u);
+  EXPECT_TRUE(test::has_warning(off, "the default light rig is off: nothing lights the scene"));
+  // A file's own emitters mean no rig at all.
+  const LoadedScene lit = load_obj_from_text(quad + "mtllib l.mtl\nusemtl lamp\nv 0 2 0\nv 1 2 0\nv 0 2 1\nf 6 7 5\n",
+                                             "newmtl lamp\nKe 1 1 1\n", "lit.obj");
+  EXPECT_EQ(lit.scene.rig_begin, Scene::kNoRig);
+  EXPECT_EQ(lit.scene.emitters.size(), 1u);
+}
+
+TEST(LightRig, ClosedRoomIsLitFromInsideAsDesigned) {
+  const LoadedScene loaded = load_obj_from_text(closed_room_obj(), "", "room.obj");
+  const Scene& scene = loaded.scene;
+  EXPECT_TRUE(test::has_warning(loaded, "light panel under the closed room's ceiling")) << test::all_warnings(loaded);
+  ASSERT_EQ(scene.emitters.size(), 2u);
+  // The panel hangs just under the ceiling, facing down, inside the room.
+  for (const uint32_t t : scene.emitters) {
+    EXPECT_LT(scene.geometric_normal_raw(t).y, 0.0f);
+    for (const uint32_t v : scene.triangles[t].v) {
+      EXPECT_GT(scene.positions[v].y, 2.5f);
+      EXPECT_LT(scene.positions[v].y, 3.0f);
+      EXPECT_GT(scene.positions[v].x, 0.0f);
+      EXPECT_LT(scene.positions[v].x, 8.0f);
+    }
+  }
+  // The floor straight below the panel's centre reads 1 for a white surface (Lambert's formula, independent of
+  // the rig's own quadrature), and L1 there is rho/pi E with every light strategy.
+  const Triangle& panel = scene.triangles[scene.emitters[0]];
+  const Vec3 below(0.5f * (scene.positions[panel.v[0]].x + scene.positions[panel.v[2]].x), 0.0f,
+                   0.5f * (scene.positions[panel.v[0]].z + scene.positions[panel.v[2]].z));
+  double e = 0.0;
+  for (const uint32_t t : scene.emitters) {
+    const Triangle& tri = scene.triangles[t];
+    e += test::lambert_irradiance({glm::dvec3(scene.positions[tri.v[0]]), glm::dvec3(scene.positions[tri.v[1]]),
+                                   glm::dvec3(scene.positions[tri.v[2]])},
+                                  glm::dvec3(below), glm::dvec3(0, 1, 0), scene.material_of(t).ke.r);
+  }
+  EXPECT_NEAR(e / kPi, 1.0, 0.01);
+  const auto traced = prepare_scene(scene);
+  Ray down;
+  down.origin = below + Vec3(0.0f, 1.0f, 0.0f);
+  down.dir = Vec3(0, -1, 0);
+  const Hit hit = intersect_closest(traced->accel, down);
+  ASSERT_TRUE(hit.found());
+  const SurfacePoint sp = make_surface_point(traced->scene, down, hit);
+  for (const LightStrategy strategy :
+       {LightStrategy::kAll, LightStrategy::kUniform, LightStrategy::kArea, LightStrategy::kPower}) {
+    DirectLightOptions options;
+    options.strategy = strategy;
+    options.rays = 4096;
+    options.blinn_k = 1.0f;
+    PixelSampler sampler(SamplerKind::kSobol, 3, 0, 0, RngPurpose::kDirect);
+    uint64_t rays = 0;
+    const Vec3 l1 = estimate_direct_light(*traced, sp, options, sampler, 0, rays);
+    EXPECT_NEAR(l1.r, 0.5 * e / kPi, 0.01 * 0.5 * e / kPi) << kLightStrategyNames[static_cast<size_t>(strategy)];
+  }
+}
+
+TEST(LightRig, RoomsAreToldFromOpenScenesAndClosedSolids) {
+  const LoadedScene room = load_obj_from_text(closed_room_obj(), "", "room.obj");
+  const LoadedScene solid = load_obj_from_text(closed_solid_obj(), "", "solid.obj");
+  // The room without its ceiling: open.
+  std::string open_text = closed_room_obj();
+  open_text.replace(open_text.find("f 6 7 8 5\n"), 10, "");  // the ceiling, facing down
+  const LoadedScene open = load_obj_from_text(open_text, "", "open.obj");
+  const auto probe = [](const Scene& s) {
+    Scene model = s;
+    model.rig_begin = std::min<uint32_t>(s.rig_begin, static_cast<uint32_t>(s.triangles.size()));
+    return find_enclosure(model.bounds(), brute_force_ray_cast(model));
+  };
+  const std::optional<Enclosure> inside = probe(room.scene);
+  ASSERT_TRUE(inside);
+  EXPECT_FALSE(probe(solid.scene)) << "from inside a closed solid the rays meet back faces";
+  EXPECT_FALSE(probe(open.scene));
+  // The view from inside stands in the room and looks along its 8-long axis, toward its far end.
+  const CameraSpec view = inside_view(room.scene.bounds(), *inside);
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_GT(view.eye[axis], room.scene.bounds().lo[axis]);
+    EXPECT_LT(view.eye[axis], room.scene.bounds().hi[axis]);
+  }
+  EXPECT_GT(std::abs(view.target.x - view.eye.x), 3.0f);
+  EXPECT_NEAR(view.target.z, view.eye.z, 1e-4f);
+  EXPECT_EQ(solid.scene.emitters.size(), 12u) << "a closed solid gets the sky";
+}
+
+TEST(LightRig, HeadlessOpensAClosedRoomFromInsideAndSaysSo) {
+  const std::string dir = test::make_temp_dir("light-rig-room");
+  const std::string path = test::write_text(dir, "room.obj", closed_room_obj());
+  const std::string image = dir + "/room.pfm";
+  const test::CommandResult inside = test::run_lueur(
+      test::shell_quote(path) + " --headless --size 32x24 --frames 2 --passes l1 --out " + test::shell_quote(image));
+  ASSERT_EQ(inside.exit_code, 0) << inside.output;
+  EXPECT_NE(inside.output.find("is a closed room: the camera starts inside it"), std::string::npos) << inside.output;
+  const test::CommandResult outside = test::run_lueur(
+      test::shell_quote(path) + " --headless --size 32x24 --frames 2 --passes l1 --camera outside --out " +
+      test::shell_quote(image));
+  ASSERT_EQ(outside.exit_code, 0) << outside.output;
+  EXPECT_NE(outside.output.find("from outside the camera sees its walls (--camera inside"), std::string::npos)
+      << outside.output;
+  const std::string solid = test::write_text(dir, "solid.obj", closed_solid_obj());
+  const test::CommandResult not_a_room = test::run_lueur(
+      test::shell_quote(solid) + " --headless --size 32x24 --frames 2 --passes l1 --camera inside --out " +
+      test::shell_quote(image));
+  ASSERT_EQ(not_a_room.exit_code, 0) << not_a_room.output;
+  EXPECT_NE(not_a_room.output.find("is not a closed room: no view from inside"), std::string::npos)
+      << not_a_room.output;
+}
+
+}  // namespace
+}  // namespace lueur
