@@ -319,6 +319,23 @@ TEST(TextureLoading, MapKdAndMapDAreReadBesideTheMtl) {
   for (const std::string& w : loaded.warnings) EXPECT_EQ(w.find("map_"), std::string::npos) << w;
 }
 
+TEST(TextureLoading, JpegColourMapsAreDecoded) {
+  const std::string dir = test::make_temp_dir("textures-jpeg");
+  // A uniform 16 x 16 JPEG (quality 100): its decoded texels are the colour within a few levels.
+  std::vector<uint8_t> orange;
+  for (int i = 0; i < 16 * 16; ++i) orange.insert(orange.end(), {230, 120, 30});
+  ASSERT_TRUE(stbi_write_jpg((dir + "/orange.jpg").c_str(), 16, 16, 3, orange.data(), 100));
+  write_text(dir + "/quad.obj", kTexturedObj);
+  write_text(dir + "/quad.mtl", "newmtl leaf\nmap_Kd orange.jpg\n");
+  const LoadedScene loaded = load_obj(dir + "/quad.obj");
+  ASSERT_EQ(loaded.scene.textures.size(), 1u);
+  EXPECT_FALSE(loaded.scene.textures[0].has_alpha);
+  const Vec3 albedo = loaded.scene.albedo(0, 0.3f, 0.3f);
+  EXPECT_NEAR(albedo.r, linear_of(230), 0.02f);
+  EXPECT_NEAR(albedo.g, linear_of(120), 0.02f);
+  EXPECT_NEAR(albedo.b, linear_of(30), 0.01f);
+}
+
 TEST(TextureLoading, MissingAndHostileImagesAreOneWarningAndGrey) {
   const std::string dir = test::make_temp_dir("textures-hostile");
   write_text(dir + "/quad.obj", kTexturedObj);
