@@ -3,10 +3,12 @@
 // closed rooms are told from open scenes and from closed solids, and get a view from inside.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "obj_test_support.h"
+#include "render/camera_light.h"
 #include "render/direct_light.h"
 #include "render/renderer.h"
 #include "scene/light_rig.h"
@@ -219,6 +221,58 @@ TEST(LightRig, HeadlessOpensAClosedRoomFromInsideAndSaysSo) {
   ASSERT_EQ(not_a_room.exit_code, 0) << not_a_room.output;
   EXPECT_NE(not_a_room.output.find("is not a closed room: no view from inside"), std::string::npos)
       << not_a_room.output;
+}
+
+TEST(CameraLight, LightsWhatTheCameraSeesAsDesigned) {
+  // A 10 x 10 white-ish wall facing +z, no emitter and no rig; the camera at half the diagonal looks at its centre.
+  LoadOptions no_rig;
+  no_rig.light_rig = false;
+  const auto traced = prepare_scene(
+      load_obj_from_text("v -5 -5 0\nv 5 -5 0\nv 5 5 0\nv -5 5 0\nf 1 2 3 4\n", "", "wall.obj", no_rig).scene);
+  ASSERT_TRUE(traced->lights.empty());
+  const float distance = 0.5f * traced->diagonal;
+  const Camera camera = make_camera({Vec3(0, 0, distance), Vec3(0.0f), Vec3(0, 1, 0), 40.0f}, 16, 16);
+  const EmitterRecord head = make_camera_light(camera, traced->diagonal);
+  EXPECT_NEAR(glm::dot(head.normal, camera.forward), 1.0f, 1e-6f);  // it shines where the camera looks
+  EXPECT_LT(glm::dot(head.p0 - camera.eye, camera.forward), 0.0f);  // from behind the eye
+
+  const Ray ray = camera_ray(camera, 8.0f, 8.0f);
+  const Hit hit = intersect_closest(traced->accel, ray);
+  ASSERT_TRUE(hit.found());
+  const SurfacePoint sp = make_surface_point(traced->scene, ray, hit);
+  DirectLightOptions options;
+  options.rays = 1024;
+  options.blinn_k = 1.0f;
+  uint64_t rays = 0;
+  PixelSampler off_sampler(SamplerKind::kSobol, 5, 0, 0, RngPurpose::kDirect);
+  EXPECT_EQ(estimate_direct_light(*traced, sp, options, off_sampler, 0, rays), Vec3(0.0f));
+  options.camera_light = &head;
+  PixelSampler sampler(SamplerKind::kSobol, 5, 0, 0, RngPurpose::kDirect);
+  const Vec3 l1 = estimate_direct_light(*traced, sp, options, sampler, 0, rays);
+  const double e = test::lambert_irradiance({glm::dvec3(head.p0), glm::dvec3(head.p1), glm::dvec3(head.p2)},
+                                            glm::dvec3(sp.position), glm::dvec3(0, 0, 1), head.ke.r);
+  const double rho = traced->scene.material_of(hit.triangle).kd.r;
+  EXPECT_NEAR(l1.r, rho / kPi * e, 0.005 * rho / kPi * e);
+  EXPECT_NEAR(e / kPi, 1.0, 0.01);  // the design: a white surface there reads 1
+
+  // Rendered: lit with the head-light, black without, and the same bytes on 1 and 2 threads.
+  RenderSettings settings;
+  settings.width = settings.height = 16;
+  settings.enabled = {false, true, true, false};
+  settings.camera_light = true;
+  const auto render = [&](int threads, bool head_light) {
+    RenderSettings s = settings;
+    s.camera_light = head_light;
+    Film film;
+    film.reset(s);
+    ThreadPool pool(threads);
+    for (int f = 0; f < 3; ++f) render_frame(*traced, camera, s, film, pool);
+    return pass_average(film, Pass::kL1).rgb;
+  };
+  const std::vector<float> one = render(1, true), two = render(2, true), dark = render(2, false);
+  EXPECT_EQ(one, two);
+  EXPECT_GT(*std::max_element(one.begin(), one.end()), 0.1f);
+  EXPECT_EQ(*std::max_element(dark.begin(), dark.end()), 0.0f);
 }
 
 }  // namespace

@@ -42,6 +42,7 @@ Settings unusual_settings() {
   s.display = {1.25f, ToneMap::kAces};
   s.smooth_normals = false;
   s.light_rig = false;
+  s.render.camera_light = true;
   s.light_rig_scale = 0.5f;
   s.start_view = StartView::kOutside;
   s.accel = AccelKind::kEmbree;

@@ -60,6 +60,20 @@ class PixelSampler {
                 fraction_to_float(reverse_bits(laine_karras_permutation(sobol_dimension_1_reversed(index), seeds.y))));
   }
 
+  /// Dimension pair `d` of the current sample, however many the sample has drawn: for a draw that comes after a
+  /// varying number of others (the head-light's point after a batch of light samples). Uncached. (The independent
+  /// sampler draws the next two numbers of its stream.)
+  Vec2 get_2d_of_dimension(uint32_t d) {
+    if (kind_ == SamplerKind::kIndependent) {
+      const float u1 = rng_.next_float();
+      return Vec2(u1, rng_.next_float());
+    }
+    const DimensionSeeds seeds = seeds_of(d);
+    const uint32_t index = shuffled_index(seeds.index);
+    return Vec2(fraction_to_float(scrambled_dimension_0(index, seeds.x)),
+                fraction_to_float(reverse_bits(laine_karras_permutation(sobol_dimension_1_reversed(index), seeds.y))));
+  }
+
   /// For `count` samples from `first_sample` on, what each would give for get_1d then get_2d: an L1 sample's light
   /// choice (`one`) and point on the light (`x`, `y`). The Sobol numbers of all the samples are computed together,
   /// in SIMD lanes.

@@ -11,12 +11,11 @@
 namespace lueur {
 namespace {
 
-/// Light arriving at the surface from one uniform point on emitter `table_index`: Le cos_p cos_l area / d^2
+/// Light arriving at the surface from one uniform point on emitter `light`: Le cos_p cos_l area / d^2
 /// (divided by the area pdf, not by the pmf), zero when the point is hidden or faces away. `wi` receives the
 /// direction to the point.
-Vec3 sample_emitter(const TracedScene& traced, const SurfacePoint& sp, uint32_t table_index, float u1, float u2,
+Vec3 sample_emitter(const TracedScene& traced, const SurfacePoint& sp, const EmitterRecord& light, float u1, float u2,
                     Vec3& wi, uint64_t& rays_traced) {
-  const EmitterRecord& light = traced.lights.records[table_index];
   const Vec2 b = sample_uniform_triangle(u1, u2);
   const Vec3 light_point = (1.0f - b.x - b.y) * light.p0 + b.x * light.p1 + b.y * light.p2;
 
@@ -98,7 +97,7 @@ Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, co
   const LightTable& table = traced.lights;
   if (diffuse_part) *diffuse_part = Vec3(0.0f);
   if (arriving) *arriving = Vec3(0.0f);
-  if (table.empty() || options.rays <= 0) return Vec3(0.0f);
+  if ((table.empty() && !options.camera_light) || options.rays <= 0) return Vec3(0.0f);
   const Material& material = traced.scene.material_of(sp.triangle);
   if (!reflects_light(material)) return Vec3(0.0f);
   const Vec3 f_diffuse = eval_brdf_diffuse(material, sp.albedo, options.blinn_k);
@@ -113,12 +112,14 @@ Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, co
     arriving_sum += light;
   };
   Vec3 wi(0.0f);
-  if (options.strategy == LightStrategy::kAll) {
+  if (table.empty()) {
+    // Only the head-light below.
+  } else if (options.strategy == LightStrategy::kAll) {
     for (int s = 0; s < options.rays; ++s) {
       sampler.start_sample(first_sample + static_cast<uint64_t>(s));
       for (uint32_t i = 0; i < table.size(); ++i) {
         const Vec2 u = sampler.get_2d();
-        accumulate(sample_emitter(traced, sp, i, u.x, u.y, wi, rays_traced), wi);
+        accumulate(sample_emitter(traced, sp, table.records[i], u.x, u.y, wi, rays_traced), wi);
       }
     }
   } else {
@@ -148,6 +149,17 @@ Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, co
         const Vec3 light = table.records[placed.light[k]].ke * placed.scale[k] / placed.pmf[k];
         accumulate(light, Vec3(placed.wi_x[k], placed.wi_y[k], placed.wi_z[k]));
       }
+    }
+  }
+  if (options.camera_light) {
+    // One point on the head-light per sample, from the dimension after those the scene's lights drew: with it off,
+    // every other number stays as it was.
+    const auto dimension =
+        static_cast<uint32_t>(table.empty() ? 0 : (options.strategy == LightStrategy::kAll ? table.size() : 2));
+    for (int s = 0; s < options.rays; ++s) {
+      sampler.start_sample(first_sample + static_cast<uint64_t>(s));
+      const Vec2 u = sampler.get_2d_of_dimension(dimension);
+      accumulate(sample_emitter(traced, sp, *options.camera_light, u.x, u.y, wi, rays_traced), wi);
     }
   }
   const float inv = 1.0f / static_cast<float>(options.rays);

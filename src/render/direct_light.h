@@ -17,6 +17,8 @@ struct DirectLightOptions {
   int rays = 16;  ///< samples; with kAll each sample sends one shadow ray to every emitter
   float blinn_k = 0.7f;
   bool specular_only = false;  ///< evaluate only the view-dependent part of the BRDF (BRDF minus its diffuse part)
+  /// The head-light (make_camera_light), sampled once per sample besides the scene's emitters; nullptr: none.
+  const EmitterRecord* camera_light = nullptr;
 };
 
 /// Radiance reflected towards `sp.wo` from the emitters, averaged over `options.rays` samples: samples

@@ -6,6 +6,7 @@
 
 #include "core/sampling.h"
 #include "render/brdf.h"
+#include "render/camera_light.h"
 #include "render/direct_light.h"
 
 namespace lueur {
@@ -233,6 +234,8 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
   recompute.strategy = settings.lights;
   recompute.rays = settings.recompute_rays();
   recompute.blinn_k = settings.blinn_k;
+  const EmitterRecord head_light = make_camera_light(camera, traced.diagonal);
+  if (settings.camera_light) recompute.camera_light = &head_light;
 
   BounceDirections directions(sp);
   const bool reuse = uses_screen(settings.reuse);

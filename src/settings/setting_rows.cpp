@@ -83,6 +83,11 @@ std::vector<Row> make_rows() {
   table.push_back(switch_row(
       "light-rig", "light scenes without emitters with the default rig (a sky; in a closed room, a ceiling panel)",
       E::kReload, [](auto& s) -> auto& { return s.light_rig; }, false));
+  table.push_back(switch_row(
+      "camera-light",
+      "a head-light: a small light just behind the camera, facing where it looks, lighting what it sees besides "
+      "the scene's emitters (it moves with the camera; no ray sees it)",
+      E::kRestart, [](auto& s) -> auto& { return s.render.camera_light; }, false));
   Row rig_scale = real_row(
       "light-rig-scale", "the default light rig's radiance factor", E::kReload,
       [](auto& s) -> auto& { return s.light_rig_scale; }, {0, 1e6}, SettingRange{0, 4});

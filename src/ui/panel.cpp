@@ -137,6 +137,8 @@ void sampling_section(PanelModel& m) {
   ao_radius_widgets(m);
   ImGui::Checkbox("Smooth normals", &v.smooth_normals);  // the viewer prepares the scene again
   setting_tooltip("smooth-normals");
+  ImGui::Checkbox("Head-light", &r.camera_light);
+  setting_tooltip("camera-light");
   // The default light rig: only scenes without emitters have one, but turning it on again must stay possible.
   if (m.has_light_rig || !v.light_rig) {
     ImGui::Checkbox("Default light rig", &v.light_rig);

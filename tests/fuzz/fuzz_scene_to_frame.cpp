@@ -42,9 +42,9 @@ uint64_t fnv1a(std::string_view bytes) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::string_view input(reinterpret_cast<const char*>(data), size);
-  std::string_view image;
+  std::string_view image_bytes;
   if (const size_t at = input.find("\n#image\n"); at != std::string_view::npos) {
-    image = input.substr(at + 8);
+    image_bytes = input.substr(at + 8);
     input = input.substr(0, at + 1);
   }
   std::string_view obj = input, mtl;
@@ -69,7 +69,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 
   // The image stands for every texture file the materials name (loading from text reads no file).
   Texture texture;
-  if (!image.empty() && decode_texture(std::string(image), uint64_t{16} << 20, texture).empty()) {
+  if (!image_bytes.empty() && decode_texture(std::string(image_bytes), uint64_t{16} << 20, texture).empty()) {
     Scene& scene = loaded.scene;
     scene.textures.push_back(std::move(texture));
     for (Material& m : scene.materials) {
