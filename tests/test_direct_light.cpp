@@ -119,17 +119,13 @@ TEST(DirectLight, MatchesLambertPolygonFormulaUnderARectangularLight) {
                                          {-0.5 * w, height, 0.5 * h}};
   for (const LightStrategy strategy : {LightStrategy::kAll, LightStrategy::kArea}) {
     for (const Vec3 p : {Vec3(0.0f), Vec3(0.3f, 0.0f, 0.1f), Vec3(1.2f, 0.0f, -0.4f), Vec3(-2.0f, 0.0f, 1.5f)}) {
-      // A ray straight down onto the floor at p.
-      Ray ray;
-      ray.origin = p + Vec3(0.0f, 0.5f, 0.0f);
-      ray.dir = Vec3(0.0f, -1.0f, 0.0f);
-      const Hit hit = intersect_closest(traced->accel, ray);
-      ASSERT_TRUE(hit.found());
-      const SurfacePoint sp = make_surface_point(traced->scene, ray, hit);
+      // The floor at p, seen straight from above.
+      const std::optional<SurfacePoint> sp = test::surface_below(*traced, p, 0.5f);
+      ASSERT_TRUE(sp);
       DirectLightOptions options;
       options.strategy = strategy;
       options.blinn_k = 1.0f;
-      const Estimate e = estimate_with_error(*traced, sp, options, 20000, 99);
+      const Estimate e = estimate_with_error(*traced, *sp, options, 20000, 99);
       const double irradiance = test::lambert_irradiance(light, glm::dvec3(p), glm::dvec3(0, 1, 0), le);
       expect_within_error(e, Vec3(static_cast<float>(rho / kPi * irradiance)),
                           "point " + std::to_string(p.x) + "," + std::to_string(p.z));

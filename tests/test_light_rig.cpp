@@ -154,12 +154,8 @@ TEST(LightRig, ClosedRoomIsLitFromInsideAsDesigned) {
   }
   EXPECT_NEAR(e / kPi, 1.0, 0.01);
   const auto traced = prepare_scene(scene);
-  Ray down;
-  down.origin = below + Vec3(0.0f, 1.0f, 0.0f);
-  down.dir = Vec3(0, -1, 0);
-  const Hit hit = intersect_closest(traced->accel, down);
-  ASSERT_TRUE(hit.found());
-  const SurfacePoint sp = make_surface_point(traced->scene, down, hit);
+  const std::optional<SurfacePoint> sp = test::surface_below(*traced, below, 1.0f);
+  ASSERT_TRUE(sp);
   for (const LightStrategy strategy :
        {LightStrategy::kAll, LightStrategy::kUniform, LightStrategy::kArea, LightStrategy::kPower}) {
     DirectLightOptions options;
@@ -168,7 +164,7 @@ TEST(LightRig, ClosedRoomIsLitFromInsideAsDesigned) {
     options.blinn_k = 1.0f;
     PixelSampler sampler(SamplerKind::kSobol, 3, 0, 0, RngPurpose::kDirect);
     uint64_t rays = 0;
-    const Vec3 l1 = estimate_direct_light(*traced, sp, options, sampler, 0, rays);
+    const Vec3 l1 = estimate_direct_light(*traced, *sp, options, sampler, 0, rays);
     EXPECT_NEAR(l1.r, 0.5 * e / kPi, 0.01 * 0.5 * e / kPi) << kLightStrategyNames[static_cast<size_t>(strategy)];
   }
 }
@@ -204,23 +200,19 @@ TEST(LightRig, HeadlessOpensAClosedRoomFromInsideAndSaysSo) {
   const std::string dir = test::make_temp_dir("light-rig-room");
   const std::string path = test::write_text(dir, "room.obj", closed_room_obj());
   const std::string image = dir + "/room.pfm";
-  const test::CommandResult inside = test::run_lueur(
-      test::shell_quote(path) + " --headless --size 32x24 --frames 2 --passes l1 --out " + test::shell_quote(image));
-  ASSERT_EQ(inside.exit_code, 0) << inside.output;
-  EXPECT_NE(inside.output.find("is a closed room: the camera starts inside it"), std::string::npos) << inside.output;
-  const test::CommandResult outside = test::run_lueur(
-      test::shell_quote(path) + " --headless --size 32x24 --frames 2 --passes l1 --camera outside --out " +
-      test::shell_quote(image));
-  ASSERT_EQ(outside.exit_code, 0) << outside.output;
-  EXPECT_NE(outside.output.find("from outside the camera sees its walls (--camera inside"), std::string::npos)
-      << outside.output;
-  const std::string solid = test::write_text(dir, "solid.obj", closed_solid_obj());
-  const test::CommandResult not_a_room = test::run_lueur(
-      test::shell_quote(solid) + " --headless --size 32x24 --frames 2 --passes l1 --camera inside --out " +
-      test::shell_quote(image));
-  ASSERT_EQ(not_a_room.exit_code, 0) << not_a_room.output;
-  EXPECT_NE(not_a_room.output.find("is not a closed room: no view from inside"), std::string::npos)
-      << not_a_room.output;
+  // A small headless render of `scene`, with `options` added; it must succeed, and its output is returned.
+  const auto render = [&](const std::string& scene, const std::string& options) {
+    const test::CommandResult r = test::run_lueur(test::shell_quote(scene) + " --headless --size 32x24 --frames 2 " +
+                                                  "--passes l1 " + options + " --out " + test::shell_quote(image));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return r.output;
+  };
+  const std::string inside = render(path, "");
+  EXPECT_NE(inside.find("is a closed room: the camera starts inside it"), std::string::npos) << inside;
+  const std::string outside = render(path, "--camera outside");
+  EXPECT_NE(outside.find("from outside the camera sees its walls (--camera inside"), std::string::npos) << outside;
+  const std::string not_a_room = render(test::write_text(dir, "solid.obj", closed_solid_obj()), "--camera inside");
+  EXPECT_NE(not_a_room.find("is not a closed room: no view from inside"), std::string::npos) << not_a_room;
 }
 
 TEST(CameraLight, LightsWhatTheCameraSeesAsDesigned) {

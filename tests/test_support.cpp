@@ -167,6 +167,15 @@ Scene make_rect_light_over_floor(float w, float h, float height, Vec3 rho, Vec3 
   return s;
 }
 
+std::optional<SurfacePoint> surface_below(const TracedScene& traced, const Vec3& point, float height) {
+  Ray down;
+  down.origin = point + Vec3(0.0f, height, 0.0f);
+  down.dir = Vec3(0.0f, -1.0f, 0.0f);
+  const Hit hit = intersect_closest(traced.accel, down);
+  if (!hit.found()) return std::nullopt;
+  return make_surface_point(traced.scene, down, hit);
+}
+
 double lambert_irradiance(const std::vector<glm::dvec3>& polygon, const glm::dvec3& p, const glm::dvec3& n, double le) {
   // Newell's normal: the polygon's area vector, pointing to the emitting side whatever corner is concave.
   glm::dvec3 area_normal(0.0);

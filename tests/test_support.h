@@ -63,6 +63,7 @@ bool wait_until(const std::function<bool()>& condition, double timeout_seconds =
 #include <gtest/gtest.h>
 
 #include "render/settings.h"
+#include "render/traced_scene.h"
 #include "scene/scene.h"
 
 namespace lueur::test {
@@ -78,6 +79,9 @@ Scene make_closed_emitting_sphere(float r, int segments, int rings, Vec3 rho, Ve
 
 /// A w x h rectangle light (two triangles, facing -y) at height `height` above a large diffuse floor at y = 0.
 Scene make_rect_light_over_floor(float w, float h, float height, Vec3 rho, Vec3 le);
+
+/// The surface point that a ray straight down from `height` above `point` meets first; nullopt when it meets none.
+std::optional<SurfacePoint> surface_below(const TracedScene& traced, const Vec3& point, float height);
 
 /// Irradiance at `p`, on a surface with unit normal `n`, from a planar polygon of uniform radiance `le`: Lambert's
 /// formula (1760), E = le / 2 * sum_i theta_i (gamma_i . n), where edge i runs from corner i to corner i + 1,

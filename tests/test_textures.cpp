@@ -194,17 +194,13 @@ TEST_P(Cutout, ShadowHasExactlyTheMaskHoles) {
       // The square's centre on the floor; the light is small and far enough that every shadow ray from it crosses
       // the plane inside the same square.
       const Vec3 floor_point(-1.0f + 0.5f * (sx + 0.5f), 0.0f, -1.0f + 0.5f * (sy + 0.5f));
-      Ray down;
-      down.origin = floor_point + Vec3(0.0f, 0.25f, 0.0f);
-      down.dir = Vec3(0, -1, 0);
-      const Hit floor_hit = intersect_closest(traced->accel, down);
-      ASSERT_TRUE(floor_hit.found());
-      const SurfacePoint sp = make_surface_point(traced->scene, down, floor_hit);
+      const std::optional<SurfacePoint> sp = test::surface_below(*traced, floor_point, 0.25f);
+      ASSERT_TRUE(sp);
       PixelSampler sampler(SamplerKind::kIndependent, 7, sy * 4 + sx, 0, RngPurpose::kDirect);
       uint64_t rays = 0;
-      const Vec3 l1 = estimate_direct_light(*traced, sp, options, sampler, 0, rays);
+      const Vec3 l1 = estimate_direct_light(*traced, *sp, options, sampler, 0, rays);
       const double expected =
-          rho.r / kPi * test::lambert_irradiance(light, glm::dvec3(sp.position), glm::dvec3(0, 1, 0), le.r);
+          rho.r / kPi * test::lambert_irradiance(light, glm::dvec3(sp->position), glm::dvec3(0, 1, 0), le.r);
       if (open) {
         EXPECT_NEAR(l1.r, expected, 0.01 * expected) << "open square " << sx << "," << sy;
         ++open_squares;

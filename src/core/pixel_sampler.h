@@ -50,28 +50,16 @@ class PixelSampler {
 
   /// The next two dimensions of the current sample, in [0, 1)^2, stratified together.
   Vec2 get_2d() {
-    if (kind_ == SamplerKind::kIndependent) {
-      const float u1 = rng_.next_float();
-      return Vec2(u1, rng_.next_float());
-    }
-    const DimensionSeeds& seeds = next_dimension_seeds();
-    const uint32_t index = shuffled_index(seeds.index);
-    return Vec2(fraction_to_float(scrambled_dimension_0(index, seeds.x)),
-                fraction_to_float(reverse_bits(laine_karras_permutation(sobol_dimension_1_reversed(index), seeds.y))));
+    if (kind_ == SamplerKind::kIndependent) return next_two_of_stream();
+    return sobol_2d(next_dimension_seeds());
   }
 
   /// Dimension pair `d` of the current sample, however many the sample has drawn: for a draw that comes after a
   /// varying number of others (the head-light's point after a batch of light samples). Uncached. (The independent
   /// sampler draws the next two numbers of its stream.)
   Vec2 get_2d_of_dimension(uint32_t d) {
-    if (kind_ == SamplerKind::kIndependent) {
-      const float u1 = rng_.next_float();
-      return Vec2(u1, rng_.next_float());
-    }
-    const DimensionSeeds seeds = seeds_of(d);
-    const uint32_t index = shuffled_index(seeds.index);
-    return Vec2(fraction_to_float(scrambled_dimension_0(index, seeds.x)),
-                fraction_to_float(reverse_bits(laine_karras_permutation(sobol_dimension_1_reversed(index), seeds.y))));
+    if (kind_ == SamplerKind::kIndependent) return next_two_of_stream();
+    return sobol_2d(seeds_of(d));
   }
 
   /// For `count` samples from `first_sample` on, what each would give for get_1d then get_2d: an L1 sample's light
@@ -128,6 +116,19 @@ class PixelSampler {
   DimensionSeeds seeds_of(uint32_t d) const {
     const uint64_t h = mix64(key_ ^ (0x9e3779b97f4a7c15ull * (d + 1)));
     return {static_cast<uint32_t>(h), static_cast<uint32_t>(h >> 32), static_cast<uint32_t>(mix64(h))};
+  }
+
+  /// The independent sampler's next two numbers, in order.
+  Vec2 next_two_of_stream() {
+    const float u1 = rng_.next_float();
+    return Vec2(u1, rng_.next_float());
+  }
+
+  /// The current sample's two coordinates in the dimension pair whose seeds are `seeds`, stratified together.
+  Vec2 sobol_2d(const DimensionSeeds& seeds) const {
+    const uint32_t index = shuffled_index(seeds.index);
+    return Vec2(fraction_to_float(scrambled_dimension_0(index, seeds.x)),
+                fraction_to_float(reverse_bits(laine_karras_permutation(sobol_dimension_1_reversed(index), seeds.y))));
   }
 
   /// The seeds of the next dimension, those of the first few kept for the pixel's next samples.

@@ -234,8 +234,11 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
   recompute.strategy = settings.lights;
   recompute.rays = settings.recompute_rays();
   recompute.blinn_k = settings.blinn_k;
-  const EmitterRecord head_light = make_camera_light(camera, traced.diagonal);
-  if (settings.camera_light) recompute.camera_light = &head_light;
+  EmitterRecord head_light;
+  if (settings.camera_light) {
+    head_light = make_camera_light(camera, traced.diagonal);
+    recompute.camera_light = &head_light;
+  }
 
   BounceDirections directions(sp);
   const bool reuse = uses_screen(settings.reuse);

@@ -104,8 +104,11 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
     options.strategy = settings.lights;
     options.rays = settings.l1_rays;
     options.blinn_k = settings.blinn_k;
-    const EmitterRecord head_light = make_camera_light(camera, traced.diagonal);
-    if (settings.camera_light) options.camera_light = &head_light;
+    EmitterRecord head_light;
+    if (settings.camera_light) {
+      head_light = make_camera_light(camera, traced.diagonal);
+      options.camera_light = &head_light;
+    }
     Vec3 diffuse(0.0f), arriving(0.0f);
     const Vec3 l1 = estimate_direct_light(traced, sp, options, sampler, frame * static_cast<uint64_t>(options.rays),
                                           rays, &diffuse, grid ? &arriving : nullptr);
