@@ -6,6 +6,7 @@
 #include <random>
 
 #include "image/image_output.h"
+#include "render/noise_view.h"
 #include "test_support.h"
 #include "ui/headless_screenshot.h"
 
@@ -29,7 +30,29 @@ Film random_film(int width, int height, uint64_t frames, uint32_t seed) {
 }
 
 std::vector<uint8_t> cpu_reference(const Film& film, const Settings& view) {
+  if (view.show_noise)  // false colours: never exposed or tone mapped
+    return tonemap_to_rgb8(noise_view_image(film, view.render.enabled, view.weights, view.render.sampler),
+                           DisplaySettings{});
   return tonemap_to_rgb8(shown_image(film, view.render.enabled, view.weights, view.layer), view.display);
+}
+
+/// A film accumulated frame by frame (so that it holds the noise estimate's snapshots), of random frames whose
+/// noise varies across the image.
+Film noisy_film(int width, int height, int frames) {
+  RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  Film film;
+  film.reset(settings);
+  std::mt19937 random(3);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (int f = 0; f < frames; ++f) {
+    for (auto& sum : film.sums)
+      for (size_t i = 0; i < sum.size(); ++i)
+        sum[i] += 0.5f + static_cast<float>(i % 97) / 97.0f * (unit(random) - 0.5f);
+    film.finish_frame();
+  }
+  return film;
 }
 
 /// Largest difference per channel between two RGB8 images of the same size.
@@ -75,6 +98,26 @@ TEST_P(GlDisplay, EqualsTheCpuToneMappingWithinOneLevel) {
         << shot.context << ", tone map " << kToneMapNames[static_cast<size_t>(view.display.tonemap)] << ", exposure "
         << view.display.exposure;
   }
+}
+
+TEST_P(GlDisplay, ShowsTheNoiseViewAsTheCpuDrawsItWithoutExposureOrToneMap) {
+  const Film film = noisy_film(131, 83, 16);
+  Settings view;
+  view.show_noise = true;
+  view.display.exposure = 2.0f;  // ignored by the noise view
+  view.display.tonemap = ToneMap::kAces;
+  Screenshot shot;
+  try {
+    shot = render_headless_screenshot(GetParam(), film, view);
+  } catch (const std::runtime_error& e) {
+    FAIL() << "no " << kHeadlessGlNames[static_cast<size_t>(GetParam())] << " context: " << e.what();
+  }
+  const std::vector<uint8_t> cpu = cpu_reference(film, view);
+  EXPECT_LE(max_difference(shot.rgb, cpu), 1) << shot.context;
+  // And it is a map, not one colour: the film's noise grows across each row.
+  int spread = 0;
+  for (size_t i = 0; i < cpu.size(); ++i) spread = std::max(spread, std::abs(int(cpu[i]) - int(cpu[0])));
+  EXPECT_GT(spread, 64);
 }
 
 TEST_P(GlDisplay, AnEmptyFilmIsBlack) {

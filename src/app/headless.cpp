@@ -7,10 +7,12 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "app/displayed_image.h"
 #include "app/scene_source.h"
 #include "core/atomic_file.h"
 #include "core/memory_budget.h"
 #include "image/image_output.h"
+#include "render/noise_estimate.h"
 #include "render/render_memory.h"
 #include "render/renderer.h"
 #include "scene/obj_loader.h"
@@ -55,6 +57,7 @@ struct RunFigures {
   double l2_seconds = 0.0;
   uint64_t bounce_hits = 0, reused = 0, cached = 0;
   L1CacheStats cache;
+  std::vector<NoisePoint> noise_history;  ///< the estimate at each power of two of the frames (for --ui)
 };
 
 /// The PNG through the display shaders of an off-screen EGL or OSMesa context, with the panel if asked.
@@ -74,6 +77,10 @@ void write_gl_screenshot(const AppOptions& options, const Settings& described, c
     panel.stats.l2_reused = figures.reused;
     panel.stats.l2_cached = figures.cached;
     panel.stats.cache = figures.cache;
+    panel.noise = estimate_film_noise(film, options.settings.render.enabled, options.settings.weights,
+                                      options.settings.render.sampler);
+    panel.noise_history = figures.noise_history;
+    record_noise(panel, panel.noise, figures.seconds);
     panel.film_width = film.width;
     panel.film_height = film.height;
     describe_scene(panel, traced);
@@ -87,6 +94,24 @@ void write_gl_screenshot(const AppOptions& options, const Settings& described, c
   std::fprintf(stderr, "lueur: display path: %s\n", shot.context.c_str());
   write_file_atomically(options.out_path, encode_png_rgb8(shot.rgb, shot.width, shot.height,
                                                           describe_options(options.scene_path, described)));
+}
+
+/// The estimated noise of each rendered pass, then the combined image's as a plain "estimated relMSE X" last.
+void print_noise_summary(const Film& film, const RenderSettings& settings,
+                         const std::array<float, kPassCount>& weights) {
+  const FilmNoise noise = estimate_film_noise(film, settings.enabled, weights, settings.sampler);
+  const auto print = [&](const std::string& what, const NoiseEstimate& e) {
+    if (e.known)
+      std::fprintf(stderr, "lueur: %s: estimated relMSE %.4g (variance falls as frames^-%.2f)\n", what.c_str(),
+                   e.rel_mse, e.exponent);
+    else
+      std::fprintf(stderr, "lueur: %s: estimated relMSE unknown (it needs %llu frames)\n", what.c_str(),
+                   static_cast<unsigned long long>(frames_before_noise_estimate(settings.sampler)));
+  };
+  for (int p = 0; p < kPassCount; ++p)
+    if (settings.enabled[static_cast<size_t>(p)])
+      print(std::string(kPassNames[static_cast<size_t>(p)]) + " pass", noise.passes[static_cast<size_t>(p)]);
+  print("image", noise.image);
 }
 
 }  // namespace
@@ -126,9 +151,12 @@ int run_headless(const AppOptions& options) {
   Clock::time_point last_progress = start;
   uint64_t rays = 0, bounce_hits = 0, reused = 0, cached = 0, dropped = 0;
   L1CacheStats cache;
+  std::vector<NoisePoint> noise_history;
   double l2_seconds = 0.0;
   const bool tty = ::isatty(STDERR_FILENO);
   const double time_limit = options.settings.time_limit;
+  const double target_noise = options.settings.target_noise;
+  bool stopped_by_noise = false;
   int done = 0;
   for (int f = 0; f < frames; ++f) {
     const FrameResult frame = render_frame(traced, camera, settings, film, pool);
@@ -142,22 +170,46 @@ int run_headless(const AppOptions& options) {
     const double elapsed = seconds_since(start);
     done = f + 1;
     const bool out_of_time = time_limit > 0.0 && elapsed >= time_limit;
-    if (done == frames || out_of_time || std::chrono::duration<double>(Clock::now() - last_progress).count() > 0.5) {
+    // The panel's plot in a --ui screenshot: the estimate at every power of two of the frames.
+    if (options.ui && options.gl != HeadlessGl::kNone && (film.frames & (film.frames - 1)) == 0) {
+      PanelModel history;
+      history.noise_history = std::move(noise_history);
+      record_noise(history, estimate_film_noise(film, settings.enabled, options.settings.weights, settings.sampler),
+                   elapsed);
+      noise_history = std::move(history.noise_history);
+    }
+    bool quiet_enough = false;
+    if (target_noise > 0.0) {
+      const NoiseEstimate noise =
+          estimate_image_noise(film, settings.enabled, options.settings.weights, settings.sampler);
+      quiet_enough = noise.known && noise.rel_mse < target_noise;
+    }
+    if (done == frames || out_of_time || quiet_enough ||
+        std::chrono::duration<double>(Clock::now() - last_progress).count() > 0.5) {
       last_progress = Clock::now();
       const double left = elapsed / (f + 1) * (frames - f - 1);
       std::fprintf(stderr, "%slueur: frame %d/%d, %.1f s elapsed, about %.1f s left%s", tty ? "\r" : "", f + 1, frames,
                    elapsed, left, tty ? "   " : "\n");
     }
+    if (quiet_enough) {
+      std::fprintf(stderr, "%slueur: target noise %g reached after %d frames, %.2f s\n", tty ? "\n" : "", target_noise,
+                   done, elapsed);
+      stopped_by_noise = true;
+      break;
+    }
     if (out_of_time) break;
   }
   const double elapsed = seconds_since(start);
   if (tty) std::fprintf(stderr, "\n");
-  if (done < frames)
+  if (done < frames && !stopped_by_noise)
     std::fprintf(stderr, "lueur: time limit of %g s reached after %d of %d frames\n", time_limit, done, frames);
+  if (target_noise > 0.0 && !stopped_by_noise)
+    std::fprintf(stderr, "lueur: target noise %g not reached in %d frames (raise --frames)\n", target_noise, done);
   // The image holds the settings that render it again: the frames done, not the time they took here.
   Settings described = options.settings;
   described.frames = done;
   described.time_limit = 0.0f;
+  described.target_noise = 0.0f;
 
   if (dropped > 0)
     std::fprintf(stderr,
@@ -166,11 +218,11 @@ int run_headless(const AppOptions& options) {
                  static_cast<unsigned long long>(dropped));
   if (options.gl != HeadlessGl::kNone) {
     write_gl_screenshot(options, described, film, traced,
-                        {elapsed, rays, l2_seconds, bounce_hits, reused, cached, cache});
+                        {elapsed, rays, l2_seconds, bounce_hits, reused, cached, cache, noise_history});
   } else {
     // The EXR holds every rendered layer; PNG and PFM show the combined image or the chosen --view.
-    write_image(options.out_path, shown_image(film, settings.enabled, options.settings.weights, layer),
-                film_layer_images(film), options.settings.display, describe_options(options.scene_path, described));
+    write_image(options.out_path, displayed_image(film, options.settings), film_layer_images(film),
+                displayed_transform(options.settings), describe_options(options.scene_path, described));
   }
 
   std::fprintf(stderr, "lueur: %d frames in %.2f s, %.1f M rays traced (%.2f Mrays/s)\n", done, elapsed,
@@ -191,6 +243,7 @@ int run_headless(const AppOptions& options) {
                  static_cast<double>(cache.bytes) / (1 << 20), settings.cache_mb,
                  cache.full ? " (full: new cells refused)" : "");
   }
+  print_noise_summary(film, settings, options.settings.weights);
   std::printf("%s\n", options.out_path.c_str());
   return 0;
 }

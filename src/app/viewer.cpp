@@ -17,10 +17,12 @@
 #include <vector>
 
 #include "accel/embree_backend.h"
+#include "app/displayed_image.h"
 #include "app/scene_loading.h"
 #include "core/atomic_file.h"
 #include "display/display_pipeline.h"
 #include "image/image_output.h"
+#include "render/noise_estimate.h"
 #include "render/progressive_tracer.h"
 #include "settings/setting_table.h"
 #include "settings/view_file.h"
@@ -295,7 +297,7 @@ class Viewer {
     const std::string path = timestamped_name(extension);
     try {
       const Settings& s = panel_.settings;
-      write_image(path, shown_image(film, s.render.enabled, s.weights, s.layer), film_layer_images(film), s.display,
+      write_image(path, displayed_image(film, s), film_layer_images(film), displayed_transform(s),
                   describe_options(scene_path_, settings_with_shown_frames()));
       set_message("saved " + path, false);
     } catch (const std::exception& e) {
@@ -330,6 +332,30 @@ class Viewer {
     tracer_.set_time_limit(panel_.settings.time_limit);
   }
 
+  /// The shown film's noise estimate, its history since the accumulation began, and the stop at a target noise.
+  void update_noise() {
+    if (shown_.generation != noise_generation_) {
+      noise_generation_ = shown_.generation;
+      panel_.noise_history.clear();
+      panel_.noise = FilmNoise{};
+      noise_target_met_ = false;
+    }
+    if (shown_.preview_divisor != 1) return;
+    const Settings& s = panel_.settings;
+    panel_.noise = estimate_film_noise(shown_.film, s.render.enabled, s.weights, s.render.sampler);
+    record_noise(panel_, panel_.noise, shown_.stats.seconds);
+    const NoiseEstimate& image = panel_.noise.image;
+    if (s.target_noise > 0.0f && image.known && image.rel_mse < s.target_noise && !noise_target_met_) {
+      noise_target_met_ = true;
+      panel_.paused = true;
+      char text[160];
+      std::snprintf(text, sizeof text, "target noise %g reached after %llu frames, %.1f s: paused",
+                    static_cast<double>(s.target_noise), static_cast<unsigned long long>(shown_.film.frames),
+                    shown_.stats.seconds);
+      set_message(text, false);
+    }
+  }
+
   void draw() {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
@@ -341,6 +367,7 @@ class Viewer {
       panel_.film_width = shown_.film.width;
       panel_.film_height = shown_.film.height;
       panel_.preview_divisor = shown_.preview_divisor;
+      update_noise();
     }
     if (w <= 0 || h <= 0) return;
     const Settings& shown = panel_.settings;
@@ -430,6 +457,8 @@ class Viewer {
   std::vector<double> frame_intervals_ms_, restart_latencies_ms_;
   Clock::time_point previous_frame_start_{}, restart_time_{};
   uint64_t awaited_generation_ = 0;
+  uint64_t noise_generation_ = ~uint64_t{0};  ///< the accumulation the noise history belongs to
+  bool noise_target_met_ = false;             ///< the target stopped this accumulation once: resuming goes on
   bool restart_pending_ = false, restart_shown_ = false;
 };
 

@@ -1,10 +1,13 @@
 // Shader compilation, texture uploads and the full-screen draw of the display.
 #include "display/display_pipeline.h"
 
+#include <functional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "display/shader_sources.h"
+#include "render/noise_view.h"
 
 namespace lueur {
 namespace {
@@ -95,31 +98,55 @@ void DisplayPipeline::update(const Film& film, uint64_t film_version, const Sett
   height_ = film.height;
   frames_ = film.frames;
   for (int l = 0; l < kLayerCount; ++l) film_has_[static_cast<size_t>(l)] = film.has(static_cast<Layer>(l));
+  if (shown.show_noise) {
+    // The noise view is made on the CPU (it needs the whole film) and shown as it is.
+    Slot& slot = slots_[0];
+    const uint64_t weights_key = std::hash<std::string_view>{}(
+        std::string_view(reinterpret_cast<const char*>(shown.weights.data()), sizeof(float) * shown.weights.size()));
+    if (slot.layer == kNoiseView && slot.version == film_version && slot.key == weights_key &&
+        slot.width == film.width && slot.height == film.height)
+      return;
+    const Image view = noise_view_image(film, shown.render.enabled, shown.weights, shown.render.sampler);
+    upload(slot, view.rgb.data(), film.width, film.height);
+    slot.layer = kNoiseView;
+    slot.version = film_version;
+    slot.key = weights_key;
+    return;
+  }
   const std::array<int, 4> layers = slot_layers(shown);
-  gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
   for (size_t s = 0; s < slots_.size(); ++s) {
     Slot& slot = slots_[s];
     const int layer = layers[s];
     if (layer < 0 || !film.has(static_cast<Layer>(layer))) continue;
     if (slot.layer == layer && slot.version == film_version && slot.width == film.width && slot.height == film.height)
       continue;
-    const float* data = film.sums[static_cast<size_t>(layer)].data();
-    gl_.BindTexture(GL_TEXTURE_2D, slot.texture);
-    if (slot.width == film.width && slot.height == film.height)
-      gl_.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, film.width, film.height, GL_RGB, GL_FLOAT, data);
-    else
-      gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, film.width, film.height, 0, GL_RGB, GL_FLOAT, data);
+    upload(slot, film.sums[static_cast<size_t>(layer)].data(), film.width, film.height);
     slot.layer = layer;
     slot.version = film_version;
-    slot.width = film.width;
-    slot.height = film.height;
   }
+}
+
+void DisplayPipeline::upload(Slot& slot, const float* rgb, int width, int height) {
+  gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  gl_.BindTexture(GL_TEXTURE_2D, slot.texture);
+  if (slot.width == width && slot.height == height)
+    gl_.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGB, GL_FLOAT, rgb);
+  else
+    gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, width, height, 0, GL_RGB, GL_FLOAT, rgb);
+  slot.width = width;
+  slot.height = height;
 }
 
 void DisplayPipeline::draw(const Settings& shown, const PixelRect& viewport, const PixelRect& image) const {
   const std::array<int, 4> layers = slot_layers(shown);
   float scale[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-  for (size_t s = 0; s < 4; ++s) {
+  DisplaySettings transform = shown.display;
+  if (shown.show_noise) {
+    transform = DisplaySettings{};  // false colours, not light: no exposure, no tone map
+    const Slot& slot = slots_[0];
+    if (slot.layer == kNoiseView && slot.width == width_ && slot.height == height_) scale[0] = 1.0f;
+  }
+  for (size_t s = 0; s < 4 && !shown.show_noise; ++s) {
     const int layer = layers[s];
     // A slot counts only when it holds this very layer of the current film.
     if (layer < 0 || frames_ == 0 || slots_[s].layer != layer || !film_has_[static_cast<size_t>(layer)] ||
@@ -139,8 +166,8 @@ void DisplayPipeline::draw(const Settings& shown, const PixelRect& viewport, con
     gl_.BindTexture(GL_TEXTURE_2D, slots_[static_cast<size_t>(s)].texture);
   }
   gl_.Uniform4f(uniforms_.scale, scale[0], scale[1], scale[2], scale[3]);
-  gl_.Uniform1f(uniforms_.exposure, shown.display.exposure);
-  gl_.Uniform1i(uniforms_.tonemap, static_cast<int>(shown.display.tonemap));
+  gl_.Uniform1f(uniforms_.exposure, transform.exposure);
+  gl_.Uniform1i(uniforms_.tonemap, static_cast<int>(transform.tonemap));
   // gl_FragCoord is in window coordinates, so the rectangle is too.
   gl_.Uniform4f(uniforms_.rect, static_cast<float>(image.x), static_cast<float>(image.y),
                 static_cast<float>(image.width), static_cast<float>(image.height));

@@ -41,11 +41,14 @@ class DisplayPipeline {
  private:
   struct Slot {
     unsigned texture = 0;
-    int layer = -1;  ///< which film layer it holds, -1 none
+    int layer = -1;  ///< which film layer it holds, -1 none, kNoiseView the noise view
     uint64_t version = 0;
+    uint64_t key = 0;  ///< for the noise view: a hash of the weights it was made with
     int width = 0, height = 0;
   };
+  static constexpr int kNoiseView = -2;
   std::array<int, 4> slot_layers(const Settings& shown) const;
+  void upload(Slot& slot, const float* rgb, int width, int height);
 
   const GlApi& gl_;
   unsigned program_ = 0, vertex_array_ = 0;

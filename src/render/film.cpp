@@ -17,6 +17,23 @@ void Film::reset(int new_width, int new_height, const std::array<bool, kLayerCou
       sum.clear();
   }
   l1_cache.reset(0);
+  for (PassSnapshot& checkpoint : checkpoints) {
+    checkpoint.frames = 0;
+    for (auto& pass : checkpoint.sums) pass.clear();
+  }
+}
+
+void Film::finish_frame() {
+  ++frames;
+  if ((frames & (frames - 1)) != 0) return;
+  // The oldest snapshot's buffers are reused for the newest.
+  std::rotate(checkpoints.rbegin(), checkpoints.rbegin() + 1, checkpoints.rend());
+  PassSnapshot& newest = checkpoints.front();
+  newest.frames = frames;
+  for (int p = 0; p < kPassCount; ++p) {
+    const auto& sum = sums[static_cast<size_t>(layer_of(static_cast<Pass>(p)))];
+    newest.sums[static_cast<size_t>(p)].assign(sum.begin(), sum.end());
+  }
 }
 
 void Film::reset(const RenderSettings& settings) {

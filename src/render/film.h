@@ -21,11 +21,23 @@ struct Image {
   }
 };
 
+/// The pass sums as they stood after `frames` frames (empty when the pass is not rendered or frames is 0).
+struct PassSnapshot {
+  uint64_t frames = 0;
+  std::array<std::vector<float>, kPassCount> sums;
+};
+
+/// How many snapshots the film keeps for the noise estimate (render/noise_estimate.h): at the last four powers of
+/// two of its frame count.
+inline constexpr int kNoiseCheckpoints = 4;
+
 struct Film {
   int width = 0, height = 0;
   std::array<std::vector<float>, kLayerCount> sums;  ///< per layer, 3 x width x height; empty when not rendered
   uint64_t frames = 0;
   L1Cache l1_cache;  ///< empty, with no room, unless the settings' reuse mode uses it
+  /// The pass sums when the frame count was last a power of two N, then at N/2, N/4 and N/8 (frames 0: none yet).
+  std::array<PassSnapshot, kNoiseCheckpoints> checkpoints;
 
   /// Sizes the buffers for the layers these settings need and clears everything (the L1 store with no room).
   void reset(int new_width, int new_height, const std::array<bool, kLayerCount>& layers);
@@ -33,6 +45,8 @@ struct Film {
   size_t pixel_count() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
   bool has(Layer l) const { return !sums[static_cast<size_t>(l)].empty(); }
   bool has(Pass p) const { return has(layer_of(p)); }
+  /// Counts a frame whose values are in the sums, and snapshots the pass sums when the count becomes a power of two.
+  void finish_frame();
 };
 
 /// The running average of one layer (black if the layer has no samples).

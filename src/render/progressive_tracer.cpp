@@ -135,6 +135,17 @@ void ProgressiveTracer::publish(const Film& film, uint64_t generation, int divis
   back_.film.height = film.height;
   back_.film.frames = film.frames;
   for (size_t l = 0; l < film.sums.size(); ++l) back_.film.sums[l].assign(film.sums[l].begin(), film.sums[l].end());
+  // The noise estimate's snapshots change only at powers of two of the frame count: copied only when they differ.
+  for (size_t c = 0; c < film.checkpoints.size(); ++c) {
+    PassSnapshot& copy = back_.film.checkpoints[c];
+    const PassSnapshot& checkpoint = film.checkpoints[c];
+    bool same = copy.frames == checkpoint.frames && back_.generation == generation;
+    for (size_t p = 0; p < checkpoint.sums.size(); ++p) same = same && copy.sums[p].size() == checkpoint.sums[p].size();
+    if (same) continue;
+    copy.frames = checkpoint.frames;
+    for (size_t p = 0; p < checkpoint.sums.size(); ++p)
+      copy.sums[p].assign(checkpoint.sums[p].begin(), checkpoint.sums[p].end());
+  }
   back_.generation = generation;
   back_.preview_divisor = divisor;
   back_.stats = stats;

@@ -284,7 +284,7 @@ FrameResult render_frame(const TracedScene& traced, const Camera& camera, const 
       sum[3 * i + 2] = b;
     }
   }
-  ++film.frames;
+  film.finish_frame();
   return result;
 }
 

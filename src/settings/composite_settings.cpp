@@ -152,13 +152,15 @@ Row weights_row() {
 
 /// The layer shown: `combined` (the weighted passes) or one layer.
 Row view_row() {
-  static const std::string value_name = "combined|" + names_list(kLayerNames);
+  static const std::string value_name = "combined|" + names_list(kLayerNames) + "|noise";
   Row row = base_row("view", value_name,
-                     "what is shown: the weighted combination of the passes, a pass, or a layer that explains reuse",
+                     "what is shown: the weighted combination of the passes, a pass, a layer that explains reuse, or "
+                     "the combined image's estimated relative error per pixel in false colour",
                      SettingEffect::kDisplay);
   row.always_described = false;
   row.parse = [](Settings& s, const std::string& text) {
-    if (text == "combined") {
+    s.show_noise = text == "noise";
+    if (text == "combined" || s.show_noise) {
       s.layer.reset();
       return;
     }
@@ -167,6 +169,7 @@ Row view_row() {
     s.layer = *layer;
   };
   row.format = [](const Settings& s) -> std::optional<std::string> {
+    if (s.show_noise) return "noise";
     return s.layer ? std::string(enum_name(kLayerNames, *s.layer)) : "combined";
   };
   row.write_json = [format = row.format](const Settings& s, json& root) { root["view"] = *format(s); };

@@ -124,6 +124,12 @@ std::vector<Row> make_rows() {
                             E::kNone, [](auto& s) -> auto& { return s.time_limit; }, {0, 1e9});
   time_limit.always_described = false;
   table.push_back(time_limit);
+  Row target_noise = real_row("target-noise",
+                              "stop once the image's estimated relMSE falls below this, once the frame in flight is "
+                              "done (0: never); the image then depends on the noise estimate's history",
+                              E::kNone, [](auto& s) -> auto& { return s.target_noise; }, {0, 1e9});
+  target_noise.always_described = false;
+  table.push_back(target_noise);
 
   for (Row& row : table) {
     if (!row.same)

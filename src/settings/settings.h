@@ -27,6 +27,7 @@ struct Settings {
   RenderSettings render;             ///< what the tracer needs: size, passes, sampling, reuse, seed
   std::array<float, kPassCount> weights = kReportWeights;
   std::optional<Layer> layer;  ///< what is shown; unset: the weighted combination of the passes
+  bool show_noise = false;     ///< show the combined image's estimated noise instead (render/noise_view.h)
   DisplaySettings display;
   bool smooth_normals = true;               ///< smooth normals for files without them
   bool light_rig = true;                    ///< scenes without emitters get the default light rig
@@ -35,7 +36,8 @@ struct Settings {
   AccelKind accel = AccelKind::kLueur;      ///< which acceleration structure traces the rays
   int frames = 64;                          ///< frames a headless render accumulates (a saved view: those shown)
   uint64_t frame_limit = 0;                 ///< the window stops accumulating after this many frames; 0: never
-  float time_limit = 0.0f;  ///< seconds of tracing after which a render stops (frame in flight included); 0: never
+  float time_limit = 0.0f;    ///< seconds of tracing after which a render stops (frame in flight included); 0: never
+  float target_noise = 0.0f;  ///< a render stops once the image's estimated relMSE falls below this; 0: never
   bool operator==(const Settings&) const = default;
 };
 

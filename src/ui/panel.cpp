@@ -152,16 +152,21 @@ void sampling_section(PanelModel& m) {
 
 void view_section(Settings& v) {
   // "combined" first, then every layer; the layers that explain reuse are report figures 7 and 8.
-  int current = v.layer ? static_cast<int>(*v.layer) + 1 : 0;
-  const std::string preview = v.layer ? std::string(kLayerNames[static_cast<size_t>(*v.layer)]) : "combined";
-  if (ImGui::BeginCombo("View", preview.c_str())) {
-    for (int i = 0; i <= kLayerCount; ++i) {
-      const std::string name = i == 0 ? "combined" : std::string(kLayerNames[static_cast<size_t>(i - 1)]);
-      if (ImGui::Selectable(name.c_str(), i == current)) current = i;
-    }
+  // ... and last the noise view.
+  constexpr int kNoiseEntry = kLayerCount + 1;
+  const auto name_of = [](int i) {
+    return i == 0             ? std::string("combined")
+           : i == kNoiseEntry ? std::string("noise")
+                              : std::string(kLayerNames[static_cast<size_t>(i - 1)]);
+  };
+  int current = v.show_noise ? kNoiseEntry : v.layer ? static_cast<int>(*v.layer) + 1 : 0;
+  if (ImGui::BeginCombo("View", name_of(current).c_str())) {
+    for (int i = 0; i <= kNoiseEntry; ++i)
+      if (ImGui::Selectable(name_of(i).c_str(), i == current)) current = i;
     ImGui::EndCombo();
   }
-  if (current == 0)
+  v.show_noise = current == kNoiseEntry;
+  if (current == 0 || v.show_noise)
     v.layer.reset();
   else
     v.layer = static_cast<Layer>(current - 1);
@@ -169,6 +174,70 @@ void view_section(Settings& v) {
   setting_slider("Exposure (stops)", "exposure", v.display.exposure, "%.2f");
   enum_combo("Tone map", kToneMapNames, v.display.tonemap);
   setting_tooltip("tonemap");
+}
+
+/// Each pass's estimated relMSE and the combined image's, and how they fell with time on log-log axes.
+void noise_section(const PanelModel& m) {
+  static const std::array<ImU32, kPassCount + 1> kColours = {IM_COL32(255, 220, 90, 255), IM_COL32(110, 200, 255, 255),
+                                                             IM_COL32(120, 235, 120, 255), IM_COL32(200, 160, 255, 255),
+                                                             IM_COL32(255, 255, 255, 255)};
+  const auto line = [&](size_t k, const char* name, const NoiseEstimate& e) {
+    ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(kColours[k]), "%-6s", name);
+    ImGui::SameLine();
+    if (e.known)
+      ImGui::Text("%.3g  (variance ~ frames^-%.2f)", e.rel_mse, e.exponent);
+    else
+      ImGui::TextUnformatted("not known yet");
+  };
+  for (int p = 0; p < kPassCount; ++p)
+    if (m.settings.render.enabled[static_cast<size_t>(p)])
+      line(static_cast<size_t>(p), std::string(kPassNames[static_cast<size_t>(p)]).c_str(),
+           m.noise.passes[static_cast<size_t>(p)]);
+  line(kPassCount, "image", m.noise.image);
+  setting_tooltip("target-noise");
+
+  // The plot: log10 seconds across, log10 relMSE up, one line per pass and the image's in white.
+  const ImVec2 size(ImGui::GetContentRegionAvail().x, 110.0f);
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  ImGui::InvisibleButton("noise-plot", size);
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->AddRect(origin, ImVec2(origin.x + size.x, origin.y + size.y), IM_COL32(120, 120, 120, 255));
+  double t0 = 1e30, t1 = -1e30, e0 = 1e30, e1 = -1e30;
+  for (const NoisePoint& point : m.noise_history)
+    for (const double e : point.rel_mse)
+      if (e > 0.0 && point.seconds > 0.0) {
+        t0 = std::min(t0, std::log10(point.seconds));
+        t1 = std::max(t1, std::log10(point.seconds));
+        e0 = std::min(e0, std::log10(e));
+        e1 = std::max(e1, std::log10(e));
+      }
+  if (!(t1 > t0) || !(e1 >= e0)) return;
+  e0 = std::floor(e0);
+  e1 = std::max(std::ceil(e1), e0 + 1.0);
+  const auto at = [&](double seconds, double e) {
+    const float x = static_cast<float>((std::log10(seconds) - t0) / (t1 - t0));
+    const float y = static_cast<float>((std::log10(e) - e0) / (e1 - e0));
+    return ImVec2(origin.x + 4.0f + x * (size.x - 8.0f), origin.y + size.y - 4.0f - y * (size.y - 8.0f));
+  };
+  for (size_t k = 0; k <= kPassCount; ++k) {
+    ImVec2 previous;
+    bool has_previous = false;
+    for (const NoisePoint& point : m.noise_history) {
+      if (!(point.rel_mse[k] > 0.0) || !(point.seconds > 0.0)) {
+        has_previous = false;
+        continue;
+      }
+      const ImVec2 here = at(point.seconds, point.rel_mse[k]);
+      if (has_previous) draw->AddLine(previous, here, kColours[k], k == kPassCount ? 2.0f : 1.0f);
+      previous = here;
+      has_previous = true;
+    }
+  }
+  char label[64];
+  std::snprintf(label, sizeof label, "1e%.0f", e1);
+  draw->AddText(ImVec2(origin.x + 3.0f, origin.y + 2.0f), IM_COL32(170, 170, 170, 255), label);
+  std::snprintf(label, sizeof label, "1e%.0f   %.2g s .. %.2g s (log-log)", e0, std::pow(10.0, t0), std::pow(10.0, t1));
+  draw->AddText(ImVec2(origin.x + 3.0f, origin.y + size.y - 16.0f), IM_COL32(170, 170, 170, 255), label);
 }
 
 void statistics_section(const PanelModel& m) {
@@ -212,6 +281,10 @@ void control_section(PanelModel& m, PanelActions& actions) {
   setting_tooltip("time-limit");
   if (!(m.settings.time_limit >= 0.0f)) m.settings.time_limit = 0.0f;  // negative or NaN: no limit
   m.settings.time_limit = std::min(m.settings.time_limit, static_cast<float>(setting_info("time-limit").range->max));
+  ImGui::SetNextItemWidth(100.0f);
+  ImGui::InputFloat("Stop at noise", &m.settings.target_noise, 0.0f, 0.0f, "%.2g");
+  setting_tooltip("target-noise");
+  if (!(m.settings.target_noise >= 0.0f)) m.settings.target_noise = 0.0f;
   if (ImGui::Button("Frame scene (F)")) actions.frame_scene = true;
   ImGui::SameLine();
   if (ImGui::Button("Reset view (R)")) actions.reset_camera = true;
@@ -237,6 +310,26 @@ void files_section(PanelModel& m, PanelActions& actions) {
 }
 
 }  // namespace
+
+void record_noise(PanelModel& model, const FilmNoise& noise, double seconds) {
+  NoisePoint point;
+  point.seconds = seconds;
+  bool known = false;
+  for (size_t p = 0; p < kPassCount; ++p)
+    if (noise.passes[p].known) {
+      point.rel_mse[p] = noise.passes[p].rel_mse;
+      known = true;
+    }
+  if (noise.image.known) point.rel_mse[kPassCount] = noise.image.rel_mse;
+  if (!known || (!model.noise_history.empty() && model.noise_history.back().seconds >= seconds)) return;
+  // Bounded: once there are many points, every other one goes.
+  if (model.noise_history.size() >= 512) {
+    size_t kept = 0;
+    for (size_t i = 0; i < model.noise_history.size(); i += 2) model.noise_history[kept++] = model.noise_history[i];
+    model.noise_history.resize(kept);
+  }
+  model.noise_history.push_back(point);
+}
 
 void describe_scene(PanelModel& m, const TracedScene& traced) {
   m.scene_name = traced.scene.name;
@@ -267,6 +360,7 @@ PanelActions draw_panel(PanelModel& m) {
   if (ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) sampling_section(m);
   if (ImGui::CollapsingHeader("View and display", ImGuiTreeNodeFlags_DefaultOpen)) view_section(m.settings);
   if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) statistics_section(m);
+  if (ImGui::CollapsingHeader("Noise (estimated relMSE)", ImGuiTreeNodeFlags_DefaultOpen)) noise_section(m);
   if (ImGui::CollapsingHeader("Control", ImGuiTreeNodeFlags_DefaultOpen)) control_section(m, actions);
   if (ImGui::CollapsingHeader("Files", ImGuiTreeNodeFlags_DefaultOpen)) files_section(m, actions);
   ImGui::PopItemWidth();

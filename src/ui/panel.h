@@ -8,18 +8,28 @@
 #include <cstddef>
 #include <map>
 #include <string>
+#include <vector>
 
+#include "render/noise_estimate.h"
 #include "render/progressive_tracer.h"
 #include "render/traced_scene.h"
 #include "settings/settings.h"
 
 namespace lueur {
 
+/// The estimated noise at one moment of an accumulation: each pass's relMSE, then the combined image's (0: unknown).
+struct NoisePoint {
+  double seconds = 0.0;
+  std::array<double, kPassCount + 1> rel_mse{};
+};
+
 struct PanelModel {
   Settings settings;  ///< edited by the widgets
   bool paused = false;
   // Read-only figures.
   TracerStats stats;
+  FilmNoise noise;                        ///< the shown film's estimated noise
+  std::vector<NoisePoint> noise_history;  ///< how it fell since the accumulation began, oldest first
   int film_width = 0, film_height = 0, preview_divisor = 1;
   std::string scene_name;
   size_t triangles = 0, emitters = 0;
@@ -43,6 +53,9 @@ struct PanelActions {
   bool frame_scene = false, reset_camera = false;
   bool inside_view = false, outside_view = false;  ///< a closed room's views (keys I and O)
 };
+
+/// Adds `noise` at `seconds` to the model's history when it is known and the history's last point is older.
+void record_noise(PanelModel& model, const FilmNoise& noise, double seconds);
 
 /// Sets the panel's figures about the scene being traced: name, triangle and emitter counts, automatic AO radius.
 void describe_scene(PanelModel& model, const TracedScene& traced);
