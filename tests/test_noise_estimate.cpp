@@ -105,11 +105,12 @@ TEST(NoiseEstimate, IndependentFramesOfKnownVarianceGiveThatVarianceOverTheFrame
 }
 
 /// Checks the estimate of every enabled pass but `unchecked` after 16, 64 and 256 frames against the true relMSE
-/// against `reference(pass)`: within a factor of 1.5 either way (both below `floor` counts as agreement: no noise at
-/// all). Every pass's figures are printed.
+/// against `reference(pass)`: within a factor of 1.5 either way. Both below `floor` (a relative error of 0.03%: the
+/// closed sphere's Le, exact but for rays that slip between triangles) counts as agreement. Every pass's figures are
+/// printed.
 void expect_honest(const TracedScene& traced, const CameraSpec& view, const RenderSettings& settings,
                    const std::function<Image(Pass)>& reference, const std::string& name,
-                   std::optional<Pass> unchecked = std::nullopt, double floor = 1e-12) {
+                   std::optional<Pass> unchecked = std::nullopt, double floor = 1e-7) {
   render(traced, view, settings, 256, [&](const Film& film) {
     if (film.frames != 16 && film.frames != 64 && film.frames != 256) return;
     for (int p = 0; p < kPassCount; ++p) {
@@ -168,10 +169,10 @@ TEST(NoiseEstimate, IsWithinOneAndAHalfOfTheTrueErrorOnTheDefaultScene) {
     RenderSettings long_run = settings;
     long_run.seed = 99;
     const Film reference = render(*traced, default_scene_camera(), long_run, 2048);
-    // Le is printed, not checked: NOT MET. Its error lives on the few pixels that cut the light's edge, where a
-    // pixel sees the light in a few percent of its camera rays: rare events, whose realised squared error and
-    // half-difference agree only on average. At 48 x 48 the estimate was 0.46x (independent, 16 frames) to 3.7x
-    // (Sobol, 256 frames) the true error.
+    // Le is printed, not checked: NOT MET. Its error lives on the few pixels that cut a light's edge (the wall
+    // lamp is small and bright), where a pixel sees the light in a few percent of its camera rays: rare events,
+    // whose realised squared error and half-differences agree only on average. At 48 x 48 the estimate was 0.47x
+    // to 2.1x the true error.
     expect_honest(
         *traced, default_scene_camera(), settings, [&](Pass pass) { return pass_average(reference, pass); },
         std::string(kSamplerKindNames[static_cast<size_t>(sampler)]), Pass::kLe);

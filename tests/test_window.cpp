@@ -14,7 +14,9 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "test_support.h"
 
@@ -37,6 +39,9 @@ std::string run_command(const std::string& command) {
 
 class Window : public ::testing::Test {
  protected:
+  /// Options the viewer starts with besides the fixture's own.
+  virtual std::vector<std::string> extra_arguments() const { return {}; }
+
   void SetUp() override {
     if (!std::getenv("DISPLAY")) GTEST_FAIL() << "no DISPLAY: CTest runs this test inside xvfb-run";
     ASSERT_FALSE(run_command("command -v xdotool").empty()) << "xdotool is missing (scripts/setup.sh installs it)";
@@ -46,8 +51,13 @@ class Window : public ::testing::Test {
     ASSERT_GE(pid_, 0);
     if (pid_ == 0) {
       // Heavy frames (16 L2 rays at 512x512 on a small machine) so that the display must not wait for them.
-      ::execl(LUEUR_EXECUTABLE, LUEUR_EXECUTABLE, "--size", "512x512", "--l1-rays", "4", "--l2-rays", "16",
-              "--state-file", state_path_.c_str(), static_cast<char*>(nullptr));
+      std::vector<std::string> arguments = {LUEUR_EXECUTABLE, "--size", "512x512",      "--l1-rays", "4",
+                                            "--l2-rays",      "16",     "--state-file", state_path_};
+      for (const std::string& extra : extra_arguments()) arguments.push_back(extra);
+      std::vector<char*> argv;
+      for (std::string& argument : arguments) argv.push_back(argument.data());
+      argv.push_back(nullptr);
+      ::execv(LUEUR_EXECUTABLE, argv.data());
       std::_Exit(127);
     }
     ASSERT_TRUE(wait_for([](const json& s) { return s["frames"].get<int>() >= 1; }))
@@ -231,6 +241,32 @@ TEST_F(Window, KeepsDrawingWhileTheTracerWorks) {
   EXPECT_TRUE(wait_for([&](const json& s) {
     return s["generation"] == first["generation"] && s["frames"].get<int>() > first["frames"].get<int>();
   })) << "the traced frame never finished: the tracer was not working";
+}
+
+/// The viewer started with an A/B split of the light choice, its divider at 0.7 of the width.
+class SplitWindow : public Window {
+ protected:
+  std::vector<std::string> extra_arguments() const override {
+    return {"--compare", "lights=uniform", "--compare-split", "0.7"};
+  }
+};
+
+TEST_F(SplitWindow, BothSidesAccumulateAndTheDividerFollowsTheMouse) {
+  // Both sides take turns: each gets frames.
+  ASSERT_TRUE(wait_for([](const json& s) { return s["right_frames"].get<int>() >= 2 && s["frames"].get<int>() >= 2; }))
+      << state().dump();
+  const json before = state();
+  EXPECT_EQ(before["view"]["compare"], "lights=uniform");
+  // Drag the divider (at 0.7 of the 512-pixel width, right of the panel) to 0.5: it moves, the camera does not.
+  press_and_drag(358, 300, 256, 300);
+  xdotool("mouseup 1");
+  wait_for_viewer_frames();
+  const json after = state();
+  EXPECT_NEAR(after["view"]["compare_split"].get<double>(), 0.5, 0.02) << after.dump();
+  EXPECT_EQ(after["view"]["camera"], before["view"]["camera"]);
+  // Moving the divider is a display change: neither side restarted.
+  EXPECT_EQ(after["generation"], before["generation"]);
+  EXPECT_EQ(after["right_generation"], before["right_generation"]);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "app/displayed_image.h"
 #include "app/scene_source.h"
+#include "app/split_output.h"
 #include "core/atomic_file.h"
 #include "core/memory_budget.h"
 #include "image/image_output.h"
@@ -16,6 +17,7 @@
 #include "render/render_memory.h"
 #include "render/renderer.h"
 #include "scene/obj_loader.h"
+#include "settings/compare.h"
 #include "ui/headless_screenshot.h"
 #include "ui/panel.h"
 
@@ -41,9 +43,9 @@ void check_output_path(const std::string& path) {
 
 /// Refuses an image whose buffers the machine cannot hold, before anything is loaded or allocated; returns what
 /// is left of the budget for the scene.
-MemoryBudget reserve_render_memory(const RenderSettings& settings) {
+MemoryBudget reserve_render_memory(const RenderSettings& settings, const RenderSettings* right) {
   const MemoryBudget budget = available_memory();
-  const uint64_t needed = render_memory_bytes(settings);
+  const uint64_t needed = render_memory_bytes(settings) + (right ? render_memory_bytes(*right) : 0);
   const std::string size = std::to_string(settings.width) + "x" + std::to_string(settings.height);
   if (needed > budget.bytes)
     throw UsageError("--size " + size + ": rendering needs about " + format_bytes(needed) +
@@ -57,12 +59,14 @@ struct RunFigures {
   double l2_seconds = 0.0;
   uint64_t bounce_hits = 0, reused = 0, cached = 0;
   L1CacheStats cache;
-  std::vector<NoisePoint> noise_history;  ///< the estimate at each power of two of the frames (for --ui)
+  std::vector<NoisePoint> noise_history;           ///< the estimate at each power of two of the frames (for --ui)
+  double left_seconds = 0.0, right_seconds = 0.0;  ///< an A/B split's tracing time per side
 };
 
-/// The PNG through the display shaders of an off-screen EGL or OSMesa context, with the panel if asked.
+/// The PNG through the display shaders of an off-screen EGL or OSMesa context, with the panel if asked, split with
+/// `right` if given.
 void write_gl_screenshot(const AppOptions& options, const Settings& described, const Film& film,
-                         const TracedScene& traced, const RunFigures& figures) {
+                         const TracedScene& traced, const RunFigures& figures, const Film* right) {
   PanelModel panel;
   if (options.ui) {
     panel.settings = options.settings;
@@ -81,19 +85,41 @@ void write_gl_screenshot(const AppOptions& options, const Settings& described, c
                                       options.settings.render.sampler);
     panel.noise_history = figures.noise_history;
     record_noise(panel, panel.noise, figures.seconds);
+    if (right) {
+      const Settings right_settings = *compared_settings(options.settings);
+      panel.comparing = true;
+      panel.stats.seconds = figures.left_seconds;
+      panel.right_noise = estimate_image_noise(*right, right_settings.render.enabled, right_settings.weights,
+                                               right_settings.render.sampler);
+      panel.right_stats.frames = right->frames;
+      panel.right_stats.seconds = figures.right_seconds;
+    }
     panel.film_width = film.width;
     panel.film_height = film.height;
     describe_scene(panel, traced);
   }
   Screenshot shot;
   try {
-    shot = render_headless_screenshot(options.gl, film, options.settings, options.ui ? &panel : nullptr);
+    shot = render_headless_screenshot(options.gl, film, options.settings, options.ui ? &panel : nullptr, right);
   } catch (const std::runtime_error& e) {
     throw IoError(std::string("--gl ") + std::string(enum_name(kHeadlessGlNames, options.gl)) + ": " + e.what());
   }
   std::fprintf(stderr, "lueur: display path: %s\n", shot.context.c_str());
   write_file_atomically(options.out_path, encode_png_rgb8(shot.rgb, shot.width, shot.height,
                                                           describe_options(options.scene_path, described)));
+}
+
+/// One side of an A/B split: its image's estimated relMSE, its tracing time, and their product, the error it would
+/// have after one second of tracing if the error falls as 1/time (lower is better).
+void print_side(const std::string& name, const Film& film, const Settings& settings, double seconds) {
+  const NoiseEstimate e =
+      estimate_image_noise(film, settings.render.enabled, settings.weights, settings.render.sampler);
+  if (!e.known) {
+    std::fprintf(stderr, "lueur: %s: %.2f s of tracing, estimated relMSE unknown\n", name.c_str(), seconds);
+    return;
+  }
+  std::fprintf(stderr, "lueur: %s: %.2f s of tracing, estimated relMSE %.4g, relMSE x seconds %.4g\n", name.c_str(),
+               seconds, e.rel_mse, e.rel_mse * seconds);
 }
 
 /// The estimated noise of each rendered pass, then the combined image's as a plain "estimated relMSE X" last.
@@ -120,7 +146,9 @@ int run_headless(const AppOptions& options) {
   check_output_path(options.out_path);
   const RenderSettings& settings = options.settings.render;
   const int frames = options.settings.frames;
-  const MemoryBudget scene_memory = reserve_render_memory(settings);
+  // An A/B split renders a second film with the compared setting changed, frame for frame with the first.
+  const std::optional<Settings> right = compared_settings(options.settings);
+  const MemoryBudget scene_memory = reserve_render_memory(settings, right ? &right->render : nullptr);
   const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
   const OpenedScene opened = open_scene(options.scene_path, scene_options_of(options.settings), aspect, scene_memory);
   for (const std::string& w : opened.warnings) std::fprintf(stderr, "lueur: warning: %s\n", w.c_str());
@@ -135,6 +163,13 @@ int run_headless(const AppOptions& options) {
   if (layer && !film.has(*layer))
     throw UsageError("--view " + std::string(enum_name(kLayerNames, *layer)) +
                      ": that layer is not rendered with these --passes/--reuse settings");
+  Film right_film;
+  if (right) {
+    right_film.reset(right->render);
+    if (layer && !right_film.has(*layer))
+      throw UsageError("--view " + std::string(enum_name(kLayerNames, *layer)) +
+                       ": that layer is not rendered on the right side of --compare " + options.settings.compare);
+  }
   ThreadPool pool(options.threads);
   const TracedScene& traced = *opened.traced;
   std::string textures;
@@ -157,9 +192,17 @@ int run_headless(const AppOptions& options) {
   const double time_limit = options.settings.time_limit;
   const double target_noise = options.settings.target_noise;
   bool stopped_by_noise = false;
+  double left_seconds = 0.0, right_seconds = 0.0;  // each side's tracing time
   int done = 0;
   for (int f = 0; f < frames; ++f) {
+    const Clock::time_point frame_start = Clock::now();
     const FrameResult frame = render_frame(traced, camera, settings, film, pool);
+    left_seconds += seconds_since(frame_start);
+    if (right) {
+      const Clock::time_point right_start = Clock::now();
+      rays += render_frame(traced, camera, right->render, right_film, pool).rays;
+      right_seconds += seconds_since(right_start);
+    }
     rays += frame.rays;
     bounce_hits += frame.l2_bounce_hits;
     reused += frame.l2_reused;
@@ -217,8 +260,13 @@ int run_headless(const AppOptions& options) {
                  "(a scene of extreme scale or emission)\n",
                  static_cast<unsigned long long>(dropped));
   if (options.gl != HeadlessGl::kNone) {
-    write_gl_screenshot(options, described, film, traced,
-                        {elapsed, rays, l2_seconds, bounce_hits, reused, cached, cache, noise_history});
+    write_gl_screenshot(
+        options, described, film, traced,
+        {elapsed, rays, l2_seconds, bounce_hits, reused, cached, cache, noise_history, left_seconds, right_seconds},
+        right ? &right_film : nullptr);
+  } else if (right) {
+    write_split_image(options.out_path, film, right_film, options.settings,
+                      describe_options(options.scene_path, described));
   } else {
     // The EXR holds every rendered layer; PNG and PFM show the combined image or the chosen --view.
     write_image(options.out_path, displayed_image(film, options.settings), film_layer_images(film),
@@ -242,6 +290,10 @@ int run_headless(const AppOptions& options) {
                  share(cached), share(bounce_hits - reused - cached), static_cast<unsigned long long>(cache.cells),
                  static_cast<double>(cache.bytes) / (1 << 20), settings.cache_mb,
                  cache.full ? " (full: new cells refused)" : "");
+  }
+  if (right) {
+    print_side("left (as set)", film, options.settings, left_seconds);
+    print_side("right (" + options.settings.compare + ")", right_film, *right, right_seconds);
   }
   print_noise_summary(film, settings, options.settings.weights);
   std::printf("%s\n", options.out_path.c_str());

@@ -21,9 +21,11 @@
 #include "app/scene_loading.h"
 #include "core/atomic_file.h"
 #include "display/display_pipeline.h"
+#include "display/split_view.h"
 #include "image/image_output.h"
 #include "render/noise_estimate.h"
 #include "render/progressive_tracer.h"
+#include "settings/compare.h"
 #include "settings/setting_table.h"
 #include "settings/view_file.h"
 #include "ui/camera_controls.h"
@@ -68,7 +70,14 @@ bool has_extension(const std::string& path, const std::string& extension) {
 class Viewer {
  public:
   Viewer(const AppOptions& options, GLFWwindow* window, const GlApi& gl)
-      : options_(options), window_(window), gl_(gl), pipeline_(gl), tracer_(options.threads) {
+      : options_(options),
+        window_(window),
+        gl_(gl),
+        pipeline_(gl),
+        right_pipeline_(gl),
+        turns_(std::make_shared<FrameTurns>()),
+        tracer_(options.threads, turns_),
+        right_tracer_(options.threads, turns_) {
     panel_.settings = options.settings;
     panel_.paused = false;
     tracer_.set_frame_limit(panel_.settings.frame_limit);
@@ -162,6 +171,28 @@ class Viewer {
     for (int b = 0; b < MouseButtons::kCount; ++b) io.MouseDown[b] = buttons.down[static_cast<size_t>(b)];
   }
 
+  /// An A/B split's divider follows a left drag that starts on it (within a few pixels) outside the panel; true
+  /// while it does, so that the drag does not also turn the camera.
+  bool drag_divider(const InputEvents& events) {
+    const bool left = events.buttons.down[GLFW_MOUSE_BUTTON_LEFT];
+    int width = 0, height = 0;
+    glfwGetWindowSize(window_, &width, &height);
+    double x = 0.0, y = 0.0;
+    glfwGetCursorPos(window_, &x, &y);
+    if (!left || !right_ || width <= 0) {
+      dragging_divider_ = false;
+      return false;
+    }
+    const double divider = panel_.settings.compare_split * width;
+    if (!dragging_divider_ && !dragging_ && !ImGui::GetIO().WantCaptureMouse && std::abs(x - divider) <= 6.0)
+      dragging_divider_ = true;
+    if (!dragging_divider_) return false;
+    panel_.settings.compare_split = static_cast<float>(std::clamp(x / width, 0.0, 1.0));
+    last_cursor_x_ = x;
+    last_cursor_y_ = y;
+    return true;
+  }
+
   void handle_input() {
     InputEvents& events = events_of(window_);
     for (const std::string& path : events.dropped) {
@@ -171,6 +202,7 @@ class Viewer {
         start_loading(path, false);
     }
     events.dropped.clear();
+    if (drag_divider(events)) return;
     if (!panel_.settings.camera) {
       events.scroll = 0.0;
       return;
@@ -330,6 +362,35 @@ class Viewer {
     tracer_.set_paused(panel_.paused);
     tracer_.set_frame_limit(panel_.settings.frame_limit);
     tracer_.set_time_limit(panel_.settings.time_limit);
+    apply_to_right_tracer();
+  }
+
+  /// The A/B split's right side: the same scene and camera, the settings with the compared one changed. Changing
+  /// only the compared value restarts only this side.
+  void apply_to_right_tracer() {
+    try {
+      right_ = compared_settings(panel_.settings);
+    } catch (const std::exception& e) {
+      set_message(std::string("--compare: ") + e.what(), true);
+      panel_.settings.compare.clear();
+      right_.reset();
+    }
+    panel_.comparing = right_.has_value();
+    right_tracer_.set_scene(right_ ? scene_.traced : nullptr);
+    if (!right_) return;
+    right_tracer_.set_settings(right_->render);
+    if (panel_.settings.camera) right_tracer_.set_camera(*panel_.settings.camera);
+    right_tracer_.set_paused(panel_.paused);
+    right_tracer_.set_frame_limit(panel_.settings.frame_limit);
+    right_tracer_.set_time_limit(panel_.settings.time_limit);
+  }
+
+  /// The right side's estimated error and tracing time, for the panel.
+  void update_right_figures() {
+    if (!right_ || shown_right_.preview_divisor != 1) return;
+    panel_.right_noise =
+        estimate_image_noise(shown_right_.film, right_->render.enabled, right_->weights, right_->render.sampler);
+    panel_.right_stats = shown_right_.stats;
   }
 
   /// The shown film's noise estimate, its history since the accumulation began, and the stop at a target noise.
@@ -369,13 +430,22 @@ class Viewer {
       panel_.preview_divisor = shown_.preview_divisor;
       update_noise();
     }
+    if (right_tracer_.take_snapshot(shown_right_)) update_right_figures();
     if (w <= 0 || h <= 0) return;
     const Settings& shown = panel_.settings;
     if (shown_.film.width > 0) pipeline_.update(shown_.film, shown_.version, shown);
+    // The split shows once the right side has a frame of the same size as the left's.
+    const bool split = right_ && shown_.film.width > 0 && shown_right_.film.width == shown_.film.width &&
+                       shown_right_.film.height == shown_.film.height;
+    if (split) right_pipeline_.update(shown_right_.film, shown_right_.version, *right_);
     gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl_.ClearColor(0.0f, 0.0f, 0.0f, 1.0f);
     gl_.Clear(GL_COLOR_BUFFER_BIT);
-    if (shown_.film.width > 0) pipeline_.draw(shown, PixelRect{0, 0, w, h}, PixelRect{0, 0, w, h});
+    const PixelRect full{0, 0, w, h};
+    if (split)
+      draw_split_view(gl_, pipeline_, shown, right_pipeline_, *right_, full, full);
+    else if (shown_.film.width > 0)
+      pipeline_.draw(shown, full, full);
     if (shown.layer && shown_.film.width > 0 && !shown_.film.has(*shown.layer))
       set_message("view " + std::string(kLayerNames[static_cast<size_t>(*shown.layer)]) +
                       " is not rendered with these passes and reuse settings",
@@ -408,6 +478,8 @@ class Viewer {
     const TracerStats stats = tracer_.stats();
     state["frames"] = stats.frames;
     state["generation"] = tracer_.generation();
+    state["right_frames"] = right_tracer_.stats().frames;  // an A/B split's right side
+    state["right_generation"] = right_tracer_.generation();
     state["shown_frames"] = shown_.film.frames;
     state["shown_generation"] = shown_.generation;
     state["display_frames"] = display_frames_;
@@ -440,7 +512,10 @@ class Viewer {
   GLFWwindow* window_;
   const GlApi& gl_;
   DisplayPipeline pipeline_;
+  DisplayPipeline right_pipeline_;     ///< an A/B split's right side
+  std::shared_ptr<FrameTurns> turns_;  ///< the two sides take turns, a frame each
   ProgressiveTracer tracer_;
+  ProgressiveTracer right_tracer_;  ///< idle (no scene) unless the settings compare something
   PanelModel panel_;
   OpenedScene scene_;
   std::string scene_path_;
@@ -448,7 +523,9 @@ class Viewer {
   std::unique_ptr<SceneLoading> loading_;
   Settings scene_settings_;  ///< the settings the scene (or the one loading) was prepared with
   bool loading_is_initial_ = false, reloading_same_scene_ = false;
-  TracerSnapshot shown_;
+  TracerSnapshot shown_, shown_right_;
+  std::optional<Settings> right_;  ///< the settings of an A/B split's right side; none without --compare
+  bool dragging_divider_ = false;
   uint64_t display_frames_ = 0;
   double frame_seconds_ = 0.0;
   double last_cursor_x_ = 0.0, last_cursor_y_ = 0.0, last_key_time_ = 0.0;

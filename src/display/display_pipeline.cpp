@@ -137,7 +137,8 @@ void DisplayPipeline::upload(Slot& slot, const float* rgb, int width, int height
   slot.height = height;
 }
 
-void DisplayPipeline::draw(const Settings& shown, const PixelRect& viewport, const PixelRect& image) const {
+void DisplayPipeline::draw(const Settings& shown, const PixelRect& viewport, const PixelRect& image,
+                           const std::optional<PixelRect>& clip) const {
   const std::array<int, 4> layers = slot_layers(shown);
   float scale[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   DisplaySettings transform = shown.display;
@@ -157,7 +158,12 @@ void DisplayPipeline::draw(const Settings& shown, const PixelRect& viewport, con
   }
   gl_.Viewport(viewport.x, viewport.y, viewport.width, viewport.height);
   gl_.Disable(GL_BLEND);
-  gl_.Disable(GL_SCISSOR_TEST);
+  if (clip) {
+    gl_.Enable(GL_SCISSOR_TEST);
+    gl_.Scissor(clip->x, clip->y, clip->width, clip->height);
+  } else {
+    gl_.Disable(GL_SCISSOR_TEST);
+  }
   gl_.Disable(GL_DEPTH_TEST);
   gl_.Disable(GL_CULL_FACE);
   gl_.UseProgram(program_);
@@ -175,6 +181,7 @@ void DisplayPipeline::draw(const Settings& shown, const PixelRect& viewport, con
   gl_.DrawArrays(GL_TRIANGLES, 0, 3);
   gl_.BindVertexArray(0);
   gl_.ActiveTexture(GL_TEXTURE0);
+  gl_.Disable(GL_SCISSOR_TEST);
 }
 
 }  // namespace lueur

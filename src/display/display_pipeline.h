@@ -33,9 +33,12 @@ class DisplayPipeline {
 
   /// Draws the last uploaded film as `shown` says (weights, layer, exposure, tone map: none restarts the tracer) into
   /// `image` of the bound framebuffer, whose full size is `viewport` (pixels outside the image are black).
-  void draw(const Settings& shown, const PixelRect& viewport, const PixelRect& image) const;
+  /// With `clip`, only the pixels inside it are drawn (an A/B split's side).
+  void draw(const Settings& shown, const PixelRect& viewport, const PixelRect& image,
+            const std::optional<PixelRect>& clip = std::nullopt) const;
 
   int film_width() const { return width_; }
+  uint64_t film_frames() const { return frames_; }
   int film_height() const { return height_; }
 
  private:

@@ -3,11 +3,11 @@
 // the same code draw into a GLFW window, an EGL surfaceless context and an OSMesa buffer.
 #pragma once
 
-#include "display/gl_proc.h"
-
 #include <GL/glcorearb.h>
 
 #include <string>
+
+#include "display/gl_proc.h"
 
 namespace lueur {
 
@@ -31,6 +31,7 @@ namespace lueur {
   X(DeleteVertexArrays, PFNGLDELETEVERTEXARRAYSPROC)         \
   X(Disable, PFNGLDISABLEPROC)                               \
   X(DrawArrays, PFNGLDRAWARRAYSPROC)                         \
+  X(Enable, PFNGLENABLEPROC)                                 \
   X(Finish, PFNGLFINISHPROC)                                 \
   X(FramebufferTexture2D, PFNGLFRAMEBUFFERTEXTURE2DPROC)     \
   X(GenFramebuffers, PFNGLGENFRAMEBUFFERSPROC)               \
@@ -46,6 +47,7 @@ namespace lueur {
   X(LinkProgram, PFNGLLINKPROGRAMPROC)                       \
   X(PixelStorei, PFNGLPIXELSTOREIPROC)                       \
   X(ReadPixels, PFNGLREADPIXELSPROC)                         \
+  X(Scissor, PFNGLSCISSORPROC)                               \
   X(ShaderSource, PFNGLSHADERSOURCEPROC)                     \
   X(TexImage2D, PFNGLTEXIMAGE2DPROC)                         \
   X(TexParameteri, PFNGLTEXPARAMETERIPROC)                   \

@@ -17,7 +17,8 @@ constexpr int kMinPreviewPixels = 8;
 
 }  // namespace
 
-ProgressiveTracer::ProgressiveTracer(int threads) : pool_(threads, ThreadPriority::kBackground) {
+ProgressiveTracer::ProgressiveTracer(int threads, std::shared_ptr<FrameTurns> turns)
+    : pool_(threads, ThreadPriority::kBackground), turns_(std::move(turns)) {
   thread_ = std::thread([this] {
     set_current_thread_priority(ThreadPriority::kBackground);  // it works in the pool's loops too
     run();
@@ -203,9 +204,14 @@ void ProgressiveTracer::run() {
     }
     const Camera camera = make_camera(camera_spec, frame_settings.width, frame_settings.height);
 
-    const Clock::time_point start = Clock::now();
-    const FrameResult result = render_frame(*scene, camera, frame_settings, *target, pool_, &cancel_);
-    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    FrameResult result;
+    double seconds = 0.0;
+    {
+      const FrameTurn turn(turns_.get());
+      const Clock::time_point start = Clock::now();
+      result = render_frame(*scene, camera, frame_settings, *target, pool_, &cancel_);
+      seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    }
     if (!result.completed) continue;  // cancelled by a restart: the loop picks up the new job
 
     TracerStats stats;

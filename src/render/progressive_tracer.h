@@ -12,6 +12,7 @@
 
 #include "render/camera.h"
 #include "render/film.h"
+#include "render/frame_turns.h"
 #include "render/settings.h"
 #include "render/thread_pool.h"
 #include "render/traced_scene.h"
@@ -44,7 +45,8 @@ class ProgressiveTracer {
  public:
   /// `threads` <= 0: one per hardware thread. The tracer starts idle until it has a scene and a non-empty size.
   /// Its threads run at background priority, so that the display's thread always gets a core when it needs one.
-  explicit ProgressiveTracer(int threads = 0);
+  /// Tracers given the same `turns` render their frames one at a time, taking turns (an A/B split's two sides).
+  explicit ProgressiveTracer(int threads = 0, std::shared_ptr<FrameTurns> turns = nullptr);
   ~ProgressiveTracer();
   ProgressiveTracer(const ProgressiveTracer&) = delete;
   ProgressiveTracer& operator=(const ProgressiveTracer&) = delete;
@@ -85,6 +87,7 @@ class ProgressiveTracer {
   void publish(const Film& film, uint64_t generation, int divisor, const TracerStats& stats);
 
   ThreadPool pool_;
+  std::shared_ptr<FrameTurns> turns_;  ///< null: the cores are this tracer's alone
   mutable std::mutex mutex_;
   std::condition_variable wake_, frame_done_;
   std::atomic<bool> cancel_{false};

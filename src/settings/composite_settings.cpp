@@ -2,6 +2,7 @@
 // and its up vector. Each reads command-line text and its own view-file form, and checks both the same way.
 #include <cmath>
 
+#include "settings/compare.h"
 #include "settings/setting_kinds.h"
 
 namespace lueur::setting_rows {
@@ -173,6 +174,36 @@ Row view_row() {
     return s.layer ? std::string(enum_name(kLayerNames, *s.layer)) : "combined";
   };
   row.write_json = [format = row.format](const Settings& s, json& root) { root["view"] = *format(s); };
+  read_json_through_text(row, string_json_text);
+  return row;
+}
+
+/// The A/B comparison: one setting that changes the estimate, and the value the split's right side gives it.
+Row compare_row() {
+  Row row = base_row("compare", "SETTING=VALUE",
+                     "A/B split view: the right side renders with this one setting changed (e.g. lights=uniform, "
+                     "reuse=off, sampler=independent), both sides accumulating at once; empty: no split",
+                     SettingEffect::kRestart);
+  row.always_described = false;
+  row.parse = [](Settings& s, const std::string& text) {
+    if (text.empty()) {
+      s.compare.clear();
+      return;
+    }
+    const size_t equals = text.find('=');
+    if (equals == std::string::npos) throw ValueError(in_quotes(text) + " is not SETTING=VALUE (e.g. lights=uniform)");
+    const std::string name = text.substr(0, equals);
+    if (!comparable(name)) throw ValueError(in_quotes(name) + " cannot be compared: use one of " + comparable_list());
+    Settings trial = s;
+    try {
+      set_setting(trial, name, text.substr(equals + 1));
+    } catch (const SettingError& e) {
+      throw ValueError(e.what());
+    }
+    s.compare = text;
+  };
+  row.format = [](const Settings& s) -> std::optional<std::string> { return s.compare; };
+  row.write_json = [](const Settings& s, json& root) { root["compare"] = s.compare; };
   read_json_through_text(row, string_json_text);
   return row;
 }

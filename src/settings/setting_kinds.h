@@ -138,6 +138,7 @@ Row passes_row();   ///< --passes le,l1; an array of names in view files
 Row weights_row();  ///< --weights le=1,l1=0.6; an object in view files
 Row view_row();     ///< --view combined|LAYER
 Row camera_row();   ///< --camera "ex ey ez tx ty tz fovy"; an object with the up vector too in view files
+Row compare_row();  ///< --compare SETTING=VALUE
 Row up_row();       ///< --up "x y z"
 
 }  // namespace lueur::setting_rows

@@ -130,6 +130,12 @@ std::vector<Row> make_rows() {
                               E::kNone, [](auto& s) -> auto& { return s.target_noise; }, {0, 1e9});
   target_noise.always_described = false;
   table.push_back(target_noise);
+  table.push_back(compare_row());
+  Row compare_split =
+      real_row("compare-split", "where the A/B split's divider stands, as a share of the width from the left",
+               E::kDisplay, [](auto& s) -> auto& { return s.compare_split; }, {0, 1});
+  compare_split.always_described = false;
+  table.push_back(compare_split);
 
   for (Row& row : table) {
     if (!row.same)

@@ -4,6 +4,8 @@
 #include <imgui.h>
 
 #include "display/offscreen_target.h"
+#include "display/split_view.h"
+#include "settings/compare.h"
 #include "ui/imgui_gl.h"
 
 namespace lueur {
@@ -38,7 +40,8 @@ void draw_panel_offscreen(GlGetProcAddress get_proc, PanelModel& panel, int widt
 
 }  // namespace
 
-Screenshot render_headless_screenshot(HeadlessGl kind, const Film& film, const Settings& shown, PanelModel* panel) {
+Screenshot render_headless_screenshot(HeadlessGl kind, const Film& film, const Settings& shown, PanelModel* panel,
+                                      const Film* right) {
   const HeadlessContext context = create_headless_context(kind);
   const GlApi gl = load_gl_api(context.get_proc);
   Screenshot shot;
@@ -51,7 +54,15 @@ Screenshot render_headless_screenshot(HeadlessGl kind, const Film& film, const S
     pipeline.update(film, 1, shown);
     target.bind();
     const PixelRect full{0, 0, film.width, film.height};
-    pipeline.draw(shown, full, full);
+    if (right) {
+      const Settings right_shown = compared_settings(shown).value_or(shown);
+      DisplayPipeline right_pipeline(gl);
+      right_pipeline.update(*right, 1, right_shown);
+      target.bind();
+      draw_split_view(gl, pipeline, shown, right_pipeline, right_shown, full, full);
+    } else {
+      pipeline.draw(shown, full, full);
+    }
     if (panel) draw_panel_offscreen(context.get_proc, *panel, film.width, film.height);
     shot.rgb = target.read_rgb8();
   }

@@ -20,7 +20,9 @@ struct Screenshot {
 
 /// Renders `film` as the display would show it with these settings. `panel`, when given, is drawn over it as in the
 /// window. Throws std::runtime_error when no context can be made or GL fails.
+/// With `right`, an A/B split view: `film` left of the divider, `right` (rendered with compared_settings(shown))
+/// right of it.
 Screenshot render_headless_screenshot(HeadlessGl kind, const Film& film, const Settings& shown,
-                                      PanelModel* panel = nullptr);
+                                      PanelModel* panel = nullptr, const Film* right = nullptr);
 
 }  // namespace lueur

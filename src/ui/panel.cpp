@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "render/indirect_light.h"
+#include "settings/compare.h"
 #include "settings/setting_table.h"
 
 namespace lueur {
@@ -240,6 +241,45 @@ void noise_section(const PanelModel& m) {
   draw->AddText(ImVec2(origin.x + 3.0f, origin.y + size.y - 16.0f), IM_COL32(170, 170, 170, 255), label);
 }
 
+/// The A/B split: which setting its right side changes and to what, the divider, and each side's error and time.
+void compare_section(PanelModel& m) {
+  Settings& v = m.settings;
+  if (v.compare != m.compare_shown) {  // set or cleared elsewhere (command line, view file, the viewer): show it
+    m.compare_shown = v.compare;
+    const size_t equals = v.compare.find('=');
+    if (equals != std::string::npos) {
+      m.compare_name = v.compare.substr(0, equals);
+      m.compare_value = v.compare.substr(equals + 1);
+    }
+  }
+  if (ImGui::BeginCombo("Setting", m.compare_name.empty() ? "(none)" : m.compare_name.c_str())) {
+    for (const std::string_view option : comparable_settings())
+      if (ImGui::Selectable(std::string(option).c_str(), option == m.compare_name)) {
+        m.compare_name = std::string(option);
+        m.compare_value = setting_text(v, option).value_or("");  // the current value, to be edited
+      }
+    ImGui::EndCombo();
+  }
+  setting_tooltip("compare");
+  char value[128];
+  std::snprintf(value, sizeof value, "%s", m.compare_value.c_str());
+  if (ImGui::InputText("Right side's value", value, sizeof value)) m.compare_value = value;
+  if (ImGui::Button("Compare") && !m.compare_name.empty()) v.compare = m.compare_name + "=" + m.compare_value;
+  ImGui::SameLine();
+  if (ImGui::Button("Stop comparing")) v.compare.clear();
+  if (!m.comparing) return;
+  setting_slider("Divider", "compare-split", v.compare_split, "%.2f");
+  const auto side = [](const char* which, const NoiseEstimate& e, double seconds) {
+    if (e.known)
+      ImGui::Text("%s: relMSE %.3g after %.1f s; x s = %.3g", which, e.rel_mse, seconds, e.rel_mse * seconds);
+    else
+      ImGui::Text("%s: %.1f s, relMSE not known yet", which, seconds);
+  };
+  side("left ", m.noise.image, m.stats.seconds);
+  side("right", m.right_noise, m.right_stats.seconds);
+  ImGui::TextDisabled("relMSE x s: the error after one second of tracing (lower is better)");
+}
+
 void statistics_section(const PanelModel& m) {
   const TracerStats& s = m.stats;
   ImGui::Text("%s: %zu triangles, %zu emitters", m.scene_name.c_str(), m.triangles, m.emitters);
@@ -361,6 +401,8 @@ PanelActions draw_panel(PanelModel& m) {
   if (ImGui::CollapsingHeader("View and display", ImGuiTreeNodeFlags_DefaultOpen)) view_section(m.settings);
   if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) statistics_section(m);
   if (ImGui::CollapsingHeader("Noise (estimated relMSE)", ImGuiTreeNodeFlags_DefaultOpen)) noise_section(m);
+  if (ImGui::CollapsingHeader("Compare (A/B split)", m.settings.compare.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
+    compare_section(m);
   if (ImGui::CollapsingHeader("Control", ImGuiTreeNodeFlags_DefaultOpen)) control_section(m, actions);
   if (ImGui::CollapsingHeader("Files", ImGuiTreeNodeFlags_DefaultOpen)) files_section(m, actions);
   ImGui::PopItemWidth();

@@ -28,8 +28,13 @@ struct PanelModel {
   bool paused = false;
   // Read-only figures.
   TracerStats stats;
-  FilmNoise noise;                        ///< the shown film's estimated noise
-  std::vector<NoisePoint> noise_history;  ///< how it fell since the accumulation began, oldest first
+  FilmNoise noise;                          ///< the shown film's estimated noise
+  bool comparing = false;                   ///< an A/B split is on (settings.compare)
+  NoiseEstimate right_noise;                ///< its right side's image estimate
+  TracerStats right_stats;                  ///< and that side's figures
+  std::string compare_name, compare_value;  ///< the compare section's choice, until applied
+  std::string compare_shown;                ///< the comparison those were last taken from
+  std::vector<NoisePoint> noise_history;    ///< how it fell since the accumulation began, oldest first
   int film_width = 0, film_height = 0, preview_divisor = 1;
   std::string scene_name;
   size_t triangles = 0, emitters = 0;
