@@ -104,6 +104,33 @@ TEST(NoiseEstimate, IndependentFramesOfKnownVarianceGiveThatVarianceOverTheFrame
   EXPECT_LT(sobol.exponent, 1.1);
 }
 
+TEST(NoiseEstimate, TheRunningEstimateIsRemadeAtPowersOfTwoAndCarriedAlongItsExponentBetween) {
+  Film film;
+  RenderSettings settings;
+  settings.width = settings.height = 32;
+  settings.enabled = {true, true, false, false};
+  film.reset(settings);
+  Pcg32 rng(3, 9);
+  RunningNoiseEstimate running;
+  std::array<float, kPassCount> weights = kReportWeights;
+  for (int f = 1; f <= 40; ++f) {
+    for (float& v : film.sums[static_cast<size_t>(Layer::kLe)]) v += 1.0f + rng.next_float();
+    for (float& v : film.sums[static_cast<size_t>(Layer::kL1)]) v += 2.0f * rng.next_float();
+    film.finish_frame();
+    if (f == 20) weights[0] = 0.25f;  // a new weight remakes it at once
+    const FilmNoise carried = running.update(film, settings.enabled, weights, SamplerKind::kIndependent);
+    const NoiseEstimate full = estimate_image_noise(film, settings.enabled, weights, SamplerKind::kIndependent);
+    ASSERT_EQ(carried.image.known, full.known) << f;
+    if (!full.known) continue;
+    if ((f & (f - 1)) == 0 || f == 20)
+      EXPECT_EQ(carried.image.rel_mse, full.rel_mse) << f;
+    else
+      EXPECT_NEAR(carried.image.rel_mse / full.rel_mse, 1.0, 0.05) << f;
+    EXPECT_EQ(carried.passes[static_cast<size_t>(Pass::kL1)].known, true);
+    EXPECT_FALSE(carried.passes[static_cast<size_t>(Pass::kL2)].known);  // not rendered
+  }
+}
+
 /// Checks the estimate of every enabled pass but `unchecked` after 16, 64 and 256 frames against the true relMSE
 /// against `reference(pass)`: within a factor of 1.5 either way. Both below `floor` (a relative error of 0.03%: the
 /// closed sphere's Le, exact but for rays that slip between triangles) counts as agreement. Every pass's figures are

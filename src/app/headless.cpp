@@ -192,6 +192,7 @@ int run_headless(const AppOptions& options) {
   const double time_limit = options.settings.time_limit;
   const double target_noise = options.settings.target_noise;
   bool stopped_by_noise = false;
+  RunningNoiseEstimate running_noise;              // for the target, remade at powers of two of the frames
   double left_seconds = 0.0, right_seconds = 0.0;  // each side's tracing time
   int done = 0;
   for (int f = 0; f < frames; ++f) {
@@ -223,9 +224,12 @@ int run_headless(const AppOptions& options) {
     }
     bool quiet_enough = false;
     if (target_noise > 0.0) {
-      const NoiseEstimate noise =
-          estimate_image_noise(film, settings.enabled, options.settings.weights, settings.sampler);
-      quiet_enough = noise.known && noise.rel_mse < target_noise;
+      const NoiseEstimate& noise =
+          running_noise.update(film, settings.enabled, options.settings.weights, settings.sampler).image;
+      // Confirmed by a full estimate, so that the summary's figure is below the target too.
+      quiet_enough = noise.known && noise.rel_mse < target_noise &&
+                     estimate_image_noise(film, settings.enabled, options.settings.weights, settings.sampler).rel_mse <
+                         target_noise;
     }
     if (done == frames || out_of_time || quiet_enough ||
         std::chrono::duration<double>(Clock::now() - last_progress).count() > 0.5) {

@@ -387,9 +387,15 @@ class Viewer {
 
   /// The right side's estimated error and tracing time, for the panel.
   void update_right_figures() {
+    if (shown_right_.generation != right_noise_generation_) {
+      right_noise_generation_ = shown_right_.generation;
+      right_noise_estimate_.reset();
+      panel_.right_noise = NoiseEstimate{};
+    }
     if (!right_ || shown_right_.preview_divisor != 1) return;
     panel_.right_noise =
-        estimate_image_noise(shown_right_.film, right_->render.enabled, right_->weights, right_->render.sampler);
+        right_noise_estimate_.update(shown_right_.film, right_->render.enabled, right_->weights, right_->render.sampler)
+            .image;
     panel_.right_stats = shown_right_.stats;
   }
 
@@ -399,11 +405,12 @@ class Viewer {
       noise_generation_ = shown_.generation;
       panel_.noise_history.clear();
       panel_.noise = FilmNoise{};
+      noise_estimate_.reset();
       noise_target_met_ = false;
     }
     if (shown_.preview_divisor != 1) return;
     const Settings& s = panel_.settings;
-    panel_.noise = estimate_film_noise(shown_.film, s.render.enabled, s.weights, s.render.sampler);
+    panel_.noise = noise_estimate_.update(shown_.film, s.render.enabled, s.weights, s.render.sampler);
     record_noise(panel_, panel_.noise, shown_.stats.seconds);
     const NoiseEstimate& image = panel_.noise.image;
     if (s.target_noise > 0.0f && image.known && image.rel_mse < s.target_noise && !noise_target_met_) {
@@ -524,6 +531,8 @@ class Viewer {
   Settings scene_settings_;  ///< the settings the scene (or the one loading) was prepared with
   bool loading_is_initial_ = false, reloading_same_scene_ = false;
   TracerSnapshot shown_, shown_right_;
+  RunningNoiseEstimate noise_estimate_, right_noise_estimate_;  ///< each side's, remade at powers of two
+  uint64_t right_noise_generation_ = ~uint64_t{0};
   std::optional<Settings> right_;  ///< the settings of an A/B split's right side; none without --compare
   bool dragging_divider_ = false;
   uint64_t display_frames_ = 0;

@@ -43,6 +43,25 @@ struct FilmNoise {
 FilmNoise estimate_film_noise(const Film& film, const std::array<bool, kPassCount>& enabled,
                               const std::array<float, kPassCount>& weights, SamplerKind sampler);
 
+/// The estimate of a film that keeps accumulating, remade only when its snapshots, the weights or the sampler change
+/// (at powers of two of the frame count) and carried in between to the current frame count along the fitted
+/// exponent: a full estimate reads the whole film five times over, too much to do for every frame of a large image
+/// on the display's thread.
+class RunningNoiseEstimate {
+ public:
+  const FilmNoise& update(const Film& film, const std::array<bool, kPassCount>& enabled,
+                          const std::array<float, kPassCount>& weights, SamplerKind sampler);
+  void reset() { made_ = false; }
+
+ private:
+  bool made_ = false;
+  uint64_t made_at_ = 0, snapshot_frames_ = 0;
+  std::array<bool, kPassCount> enabled_{};
+  std::array<float, kPassCount> weights_{};
+  SamplerKind sampler_ = SamplerKind::kSobol;
+  FilmNoise made_noise_, noise_;
+};
+
 /// Each pixel's estimated relative error (the square root of its relMSE, its channels averaged) in the combined
 /// image, smoothed over 3 x 3 pixels so that the one-pixel estimates read as a map; an empty image while unknown.
 Image pixel_noise_map(const Film& film, const std::array<bool, kPassCount>& enabled,

@@ -126,9 +126,17 @@ Image noise_view_image(const Film& film, const std::array<bool, kPassCount>& ena
                        const std::array<float, kPassCount>& weights, SamplerKind sampler) {
   Image view{film.width, film.height, std::vector<float>(3 * film.pixel_count(), 0.0f)};
   const Image errors = pixel_noise_map(film, enabled, weights, sampler);
+  // The scale in 1024 linear colours: a pixel's colour is a look-up, not three powers.
+  static const std::array<Vec3, 1024> kLinearScale = [] {
+    std::array<Vec3, 1024> table;
+    for (size_t k = 0; k < table.size(); ++k)
+      table[k] = linear_of(colour_at(static_cast<float>(k) / static_cast<float>(table.size() - 1)));
+    return table;
+  }();
   if (!errors.rgb.empty())
     for (size_t i = 0; i < film.pixel_count(); ++i) {
-      const Vec3 c = linear_of(noise_scale_colour(errors.rgb[3 * i]));
+      const float position = scale_position(errors.rgb[3 * i]);
+      const Vec3 c = kLinearScale[static_cast<size_t>(position * static_cast<float>(kLinearScale.size() - 1) + 0.5f)];
       view.rgb[3 * i] = c.r;
       view.rgb[3 * i + 1] = c.g;
       view.rgb[3 * i + 2] = c.b;
