@@ -21,7 +21,7 @@ Film random_film(int width, int height, uint64_t frames, uint32_t seed) {
   settings.enabled = {true, true, true, true};
   Film film;
   film.reset(settings);
-  film.frames = frames;
+  film.frames = frames;  // only the float sums are set: what the display reads
   std::mt19937 random(seed);
   std::uniform_real_distribution<float> exponent(-4.0f, 1.5f);
   for (auto& sum : film.sums)
@@ -46,11 +46,16 @@ Film noisy_film(int width, int height, int frames) {
   film.reset(settings);
   std::mt19937 random(3);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  film.unit = 0x1p-32;
+  std::array<std::vector<Vec3>, kLayerCount> values;
   for (int f = 0; f < frames; ++f) {
-    for (auto& sum : film.sums)
-      for (size_t i = 0; i < sum.size(); ++i)
-        sum[i] += 0.5f + static_cast<float>(i % 97) / 97.0f * (unit(random) - 0.5f);
-    film.finish_frame();
+    for (size_t l = 0; l < kLayerCount; ++l) {
+      if (!film.has(static_cast<Layer>(l))) continue;
+      values[l].resize(film.pixel_count());
+      for (size_t i = 0; i < 3 * film.pixel_count(); ++i)
+        values[l][i / 3][static_cast<int>(i % 3)] = 0.5f + static_cast<float>(i % 97) / 97.0f * (unit(random) - 0.5f);
+    }
+    film.add_frame(values);
   }
   return film;
 }

@@ -47,6 +47,20 @@ Film render(const TracedScene& traced, const CameraSpec& view, const RenderSetti
   return film;
 }
 
+/// Adds a frame to `film` whose every pixel channel of each layer in `layers` is a fresh `value(layer)`.
+template <typename Value>
+void add_test_frame(Film& film, std::initializer_list<Layer> layers, Value&& value) {
+  if (film.unit == 0.0) film.unit = 0x1p-32;
+  std::array<std::vector<Vec3>, kLayerCount> values;
+  for (const Layer layer : layers) {
+    std::vector<Vec3>& v = values[static_cast<size_t>(layer)];
+    v.resize(film.pixel_count());
+    for (Vec3& pixel : v)
+      for (int c = 0; c < 3; ++c) pixel[c] = value(layer);
+  }
+  ASSERT_EQ(film.add_frame(values), 0u);
+}
+
 TEST(NoiseEstimate, FilmSnapshotsThePassSumsAtPowersOfTwo) {
   Film film;
   RenderSettings settings;
@@ -55,8 +69,7 @@ TEST(NoiseEstimate, FilmSnapshotsThePassSumsAtPowersOfTwo) {
   film.reset(settings);
   std::vector<float> at_four, at_eight;
   for (int f = 1; f <= 11; ++f) {
-    for (float& v : film.sums[static_cast<size_t>(Layer::kL1)]) v += static_cast<float>(f);
-    film.finish_frame();
+    add_test_frame(film, {Layer::kL1}, [&](Layer) { return static_cast<float>(f); });
     if (f == 4) at_four = film.sums[static_cast<size_t>(Layer::kL1)];
     if (f == 8) at_eight = film.sums[static_cast<size_t>(Layer::kL1)];
   }
@@ -82,8 +95,7 @@ TEST(NoiseEstimate, IndependentFramesOfKnownVarianceGiveThatVarianceOverTheFrame
   film.reset(settings);
   Pcg32 rng(7, 1);
   for (int f = 1; f <= 100; ++f) {
-    for (float& v : film.sums[static_cast<size_t>(Layer::kL1)]) v += 2.0f * rng.next_float();
-    film.finish_frame();
+    add_test_frame(film, {Layer::kL1}, [&](Layer) { return 2.0f * rng.next_float(); });
     if (f < 2) {
       EXPECT_FALSE(estimate_pass_noise(film, Pass::kL1, SamplerKind::kIndependent).known);
       continue;
@@ -114,9 +126,8 @@ TEST(NoiseEstimate, TheRunningEstimateIsRemadeAtPowersOfTwoAndCarriedAlongItsExp
   RunningNoiseEstimate running;
   std::array<float, kPassCount> weights = kReportWeights;
   for (int f = 1; f <= 40; ++f) {
-    for (float& v : film.sums[static_cast<size_t>(Layer::kLe)]) v += 1.0f + rng.next_float();
-    for (float& v : film.sums[static_cast<size_t>(Layer::kL1)]) v += 2.0f * rng.next_float();
-    film.finish_frame();
+    add_test_frame(film, {Layer::kLe, Layer::kL1},
+                   [&](Layer l) { return l == Layer::kLe ? 1.0f + rng.next_float() : 2.0f * rng.next_float(); });
     if (f == 20) weights[0] = 0.25f;  // a new weight remakes it at once
     const FilmNoise carried = running.update(film, settings.enabled, weights, SamplerKind::kIndependent);
     const NoiseEstimate full = estimate_image_noise(film, settings.enabled, weights, SamplerKind::kIndependent);

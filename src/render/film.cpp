@@ -2,6 +2,8 @@
 #include "render/film.h"
 
 #include <algorithm>
+#include <cmath>
+#include <stdexcept>
 
 namespace lueur {
 
@@ -9,12 +11,15 @@ void Film::reset(int new_width, int new_height, const std::array<bool, kLayerCou
   width = new_width;
   height = new_height;
   frames = 0;
-  for (int l = 0; l < kLayerCount; ++l) {
-    auto& sum = sums[static_cast<size_t>(l)];
-    if (layers[static_cast<size_t>(l)])
-      sum.assign(3 * pixel_count(), 0.0f);
-    else
-      sum.clear();
+  unit = 0.0;
+  for (size_t l = 0; l < kLayerCount; ++l) {
+    if (layers[l]) {
+      exact[l].assign(3 * pixel_count(), 0);
+      if (!exact_only) sums[l].assign(3 * pixel_count(), 0.0f);
+    } else {
+      exact[l].clear();
+      sums[l].clear();
+    }
   }
   l1_cache.reset(0);
   for (PassSnapshot& checkpoint : checkpoints) {
@@ -23,9 +28,67 @@ void Film::reset(int new_width, int new_height, const std::array<bool, kLayerCou
   }
 }
 
+uint64_t Film::add_frame(const std::array<std::vector<Vec3>, kLayerCount>& values) {
+  uint64_t dropped = 0;
+  const double inverse_unit = 1.0 / unit;  // exact: the unit is a power of two
+  for (size_t l = 0; l < kLayerCount; ++l) {
+    const std::vector<Vec3>& layer = values[l];
+    if (layer.empty() || exact[l].empty()) continue;
+    int64_t* sum = exact[l].data();
+    for (size_t i = 0; i < layer.size(); ++i) {
+      int64_t added[3];
+      bool fits = true;
+      for (int c = 0; c < 3; ++c) {
+        const double scaled = static_cast<double>(layer[i][c]) * inverse_unit;
+        // Also false for NaN. One extreme sample (a near-singular light path in a scene of extreme scale) must not
+        // spoil a pixel for good: it is dropped and counted instead.
+        fits = fits && std::fabs(scaled) <= kMaxSampleUnits &&
+               !__builtin_add_overflow(sum[3 * i + c], std::llrint(scaled), &added[c]);
+      }
+      if (!fits) {
+        ++dropped;
+        continue;
+      }
+      for (int c = 0; c < 3; ++c) sum[3 * i + c] = added[c];
+    }
+  }
+  finish_frame();
+  return dropped;
+}
+
+void Film::add_exact(const ExactSums& part, uint64_t frames_after) {
+  if (frames_after < frames) throw std::logic_error("Film::add_exact: the frame count cannot go down");
+  if (frames_after == frames) return;
+  // The lowest power of two above the current count must not be skipped.
+  if (frames_after > frames) {
+    uint64_t next_power = 1;
+    while (next_power <= frames) next_power <<= 1;
+    if (frames_after > next_power) throw std::logic_error("Film::add_exact: a power of two of the frames was skipped");
+  }
+  for (size_t l = 0; l < kLayerCount; ++l) {
+    if (exact[l].empty()) continue;
+    if (part[l].size() != exact[l].size()) throw std::logic_error("Film::add_exact: the layers differ");
+    for (size_t i = 0; i < exact[l].size(); ++i) exact[l][i] += part[l][i];
+  }
+  frames = frames_after - 1;
+  finish_frame();
+}
+
+void Film::refresh_sums() {
+  if (exact_only) return;
+  for (size_t l = 0; l < kLayerCount; ++l) {
+    const std::vector<int64_t>& from = exact[l];
+    std::vector<float>& to = sums[l];
+    to.resize(from.size());
+    for (size_t i = 0; i < from.size(); ++i) to[i] = static_cast<float>(static_cast<double>(from[i]) * unit);
+  }
+}
+
 void Film::finish_frame() {
   ++frames;
-  if ((frames & (frames - 1)) != 0) return;
+  if (exact_only) return;
+  refresh_sums();
+  if (!is_power_of_two(frames)) return;
   // The oldest snapshot's buffers are reused for the newest.
   std::rotate(checkpoints.rbegin(), checkpoints.rbegin() + 1, checkpoints.rend());
   PassSnapshot& newest = checkpoints.front();

@@ -1,5 +1,10 @@
-// The accumulation buffers: one float RGB sum per pass plus the frame count, and the image they average to; and the
+// The accumulation buffers: one exact RGB sum per pass plus the frame count, and the image they average to; and the
 // L1 store, which accumulates with them. Depends on render settings and the L1 store.
+//
+// The sums are exact so that any split of the frames gives the same bytes: each sample is rounded to a multiple of
+// the film's unit (2^-32 of the brightest emission) and summed as a 64-bit integer. Integer addition is associative,
+// so frames added in any order, on any thread, rank or resumed run, give the same sums; float sums would depend on
+// the order. The float sums that everything else reads are made from the exact ones after each frame.
 #pragma once
 
 #include <array>
@@ -31,10 +36,23 @@ struct PassSnapshot {
 /// two of its frame count.
 inline constexpr int kNoiseCheckpoints = 4;
 
+/// Exact per-layer sums: counts of the film's unit, 3 x width x height per rendered layer.
+using ExactSums = std::array<std::vector<int64_t>, kLayerCount>;
+
+/// The largest sample, in units, that a film accepts (2^24 times the brightest emission): a larger one is dropped
+/// and counted, so that 2^31 frames of samples as bright as the brightest emitter still fit in 64 bits.
+inline constexpr double kMaxSampleUnits = 0x1p56;
+
 struct Film {
   int width = 0, height = 0;
-  std::array<std::vector<float>, kLayerCount> sums;  ///< per layer, 3 x width x height; empty when not rendered
+  /// The value of one count of `exact`: a power of two, 2^-32 of the brightest emission rounded up to a power of
+  /// two (at least 1). 0 until the first frame chooses it (render/renderer.h: film_unit).
+  double unit = 0.0;
+  ExactSums exact;                                   ///< the sums, exact; empty when not rendered
+  std::array<std::vector<float>, kLayerCount> sums;  ///< exact x unit as floats, what the image is made from
   uint64_t frames = 0;
+  /// A film that only accumulates (an MPI rank's share of the frames): no float sums, no snapshots.
+  bool exact_only = false;
   L1Cache l1_cache;  ///< empty, with no room, unless the settings' reuse mode uses it
   /// The pass sums when the frame count was last a power of two N, then at N/2, N/4 and N/8 (frames 0: none yet).
   std::array<PassSnapshot, kNoiseCheckpoints> checkpoints;
@@ -43,11 +61,26 @@ struct Film {
   void reset(int new_width, int new_height, const std::array<bool, kLayerCount>& layers);
   void reset(const RenderSettings& settings);
   size_t pixel_count() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
-  bool has(Layer l) const { return !sums[static_cast<size_t>(l)].empty(); }
+  /// Whether the layer is rendered (a display's copy of a film holds only the float sums; a rank's, only exact ones).
+  bool has(Layer l) const { return !exact[static_cast<size_t>(l)].empty() || !sums[static_cast<size_t>(l)].empty(); }
   bool has(Pass p) const { return has(layer_of(p)); }
-  /// Counts a frame whose values are in the sums, and snapshots the pass sums when the count becomes a power of two.
+  /// Adds one frame's values (per layer, one Vec3 per pixel; a layer the film does not render is ignored) and counts
+  /// the frame. A pixel sample with a value that is not finite or is larger than kMaxSampleUnits is dropped whole.
+  /// Returns the number of pixel samples dropped.
+  uint64_t add_frame(const std::array<std::vector<Vec3>, kLayerCount>& values);
+  /// Adds the sums of frames rendered elsewhere (another film's `exact`, an MPI reduction) and sets the frame count
+  /// to `frames_after`, as if they had been rendered here. Throws std::logic_error if that would pass a power of two
+  /// of the frame count without stopping at it (the noise estimate's snapshot would be missing).
+  void add_exact(const ExactSums& part, uint64_t frames_after);
+  /// Remakes the float sums from the exact ones.
+  void refresh_sums();
+  /// Counts a frame whose values are in the exact sums: remakes the float sums and snapshots the pass sums when the
+  /// count becomes a power of two.
   void finish_frame();
 };
+
+/// Whether n is a power of two (0 is not).
+inline bool is_power_of_two(uint64_t n) { return n != 0 && (n & (n - 1)) == 0; }
 
 /// The running average of one layer (black if the layer has no samples).
 Image layer_average(const Film& film, Layer layer);

@@ -16,9 +16,9 @@ uint64_t render_memory_bytes(const RenderSettings& settings) {
   const uint64_t layers = static_cast<uint64_t>(std::count(needed.begin(), needed.end(), true));
   constexpr uint64_t kRgb = 3 * sizeof(float);
 
-  // The film: its layers, and the noise estimate's snapshots of the passes.
+  // The film: its layers (exact and float sums), and the noise estimate's snapshots of the passes.
   const uint64_t passes = static_cast<uint64_t>(std::count(settings.enabled.begin(), settings.enabled.end(), true));
-  const uint64_t film = layers * kRgb + kNoiseCheckpoints * passes * kRgb;
+  const uint64_t film = layers * (kRgb + 3 * sizeof(int64_t)) + kNoiseCheckpoints * passes * kRgb;
   // render_frame: per-layer values, the primary hits and the screen buffer L2 reuses.
   // The L1 store: its cap, and a frame's records waiting for the merge (one per pixel and per recomputed bounce hit).
   const bool store = settings.pass_enabled(Pass::kL2) && uses_cache(settings.reuse);

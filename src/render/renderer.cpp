@@ -8,6 +8,8 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 
 #include "render/camera_light.h"
 #include "render/direct_light.h"
@@ -199,12 +201,29 @@ struct alignas(64) WorkerCounters {
 
 }  // namespace
 
+double film_unit(const TracedScene& traced, const Camera& camera, const RenderSettings& settings) {
+  float brightest = 1.0f;
+  for (const EmitterRecord& emitter : traced.lights.records)
+    brightest = std::max({brightest, emitter.ke.r, emitter.ke.g, emitter.ke.b});
+  if (settings.camera_light) {
+    const Vec3 ke = make_camera_light(camera, traced.diagonal).ke;
+    brightest = std::max({brightest, ke.r, ke.g, ke.b});
+  }
+  if (!std::isfinite(brightest)) brightest = std::numeric_limits<float>::max();
+  int exponent = 0;
+  std::frexp(brightest, &exponent);  // brightest < 2^exponent
+  return std::ldexp(1.0, exponent - 32);
+}
+
 FrameResult render_frame(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, Film& film,
                          ThreadPool& pool, const std::atomic<bool>* cancel) {
   using Clock = std::chrono::steady_clock;
   FrameResult result;
   const int width = film.width, height = film.height;
   const uint64_t frame = film.frames;
+  if (film.unit == 0.0) film.unit = film_unit(traced, camera, settings);
+  if (film.exact_only && settings.pass_enabled(Pass::kL2) && settings.reuse == ReuseMode::kAverage)
+    throw std::logic_error("render_frame: --reuse average reads the film's float sums, which this film does not keep");
 
   FrameBuffers buffers;
   for (int l = 0; l < kLayerCount; ++l)
@@ -267,24 +286,7 @@ FrameResult render_frame(const TracedScene& traced, const Camera& camera, const 
     film.l1_cache.merge(records, pool);
     result.cache = film.l1_cache.stats();
   }
-  for (size_t l = 0; l < kLayerCount; ++l) {
-    const std::vector<Vec3>& values = buffers.values[l];
-    if (values.empty()) continue;
-    float* sum = film.sums[l].data();
-    for (size_t i = 0; i < values.size(); ++i) {
-      const float r = sum[3 * i] + values[i].r, g = sum[3 * i + 1] + values[i].g, b = sum[3 * i + 2] + values[i].b;
-      // One extreme sample (a near-singular light path in a scene of extreme scale) must not make a pixel NaN or
-      // infinite for good: it is dropped and counted instead.
-      if (!std::isfinite(r) || !std::isfinite(g) || !std::isfinite(b)) {
-        ++result.dropped_samples;
-        continue;
-      }
-      sum[3 * i] = r;
-      sum[3 * i + 1] = g;
-      sum[3 * i + 2] = b;
-    }
-  }
-  film.finish_frame();
+  result.dropped_samples = film.add_frame(buffers.values);
   return result;
 }
 

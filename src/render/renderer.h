@@ -25,10 +25,15 @@ struct FrameResult {
   L1CacheStats cache;            ///< the L1 store after this frame's merge (empty without a store mode)
   double l2_seconds = 0.0;       ///< wall time of the L2 phase
   bool completed = true;         ///< false when `cancel` stopped it early (the film is then left untouched)
-  uint64_t dropped_samples = 0;  ///< pixel values not added to the film: not finite, or the sum would overflow
+  uint64_t dropped_samples = 0;  ///< pixel values not added to the film: not finite, or too large for the film
 };
 
-/// Traces frame number `film.frames` at full resolution and adds it to the film's sums.
+/// The unit of a film of this scene (Film::unit): 2^-32 of its brightest emission (the head-light's too, when it is
+/// on), rounded up to a power of two, and at least 2^-32.
+double film_unit(const TracedScene& traced, const Camera& camera, const RenderSettings& settings);
+
+/// Traces frame number `film.frames` at full resolution and adds it to the film's sums (choosing the film's unit if
+/// it has none yet).
 /// `cancel`, when given and set, makes workers drop their remaining tiles.
 FrameResult render_frame(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, Film& film,
                          ThreadPool& pool, const std::atomic<bool>* cancel = nullptr);
