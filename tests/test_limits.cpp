@@ -166,7 +166,7 @@ TEST(CliLimits, SceneLargerThanWhatTheImageLeavesIsRefused) {
                       "LUEUR_MEMORY_LIMIT_MB=70");
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("scene too large: "), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("less 64.1 MiB for the 16x16 image"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("less 64.2 MiB for the 16x16 image"), std::string::npos) << r.output;
   EXPECT_FALSE(test::file_exists(out));
 }
 

@@ -90,6 +90,15 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv) {
                  "headless PNG through the GL display shaders: egl|osmesa|auto (EGL, else OSMesa) or none (CPU, "
                  "default)");
   app.add_flag("--ui", o.ui, "draw the control panel into the headless screenshot (needs --gl)");
+  app.add_option("--checkpoint", o.checkpoint_seconds,
+                 "headless: every SECONDS, write the image so far and, beside it as OUT.lueur-state, what --resume "
+                 "needs to go on (also at the end)")
+      ->type_name("SECONDS")
+      ->check(CLI::Range(0.0, 1e9));
+  app.add_option("--resume", o.resume_path,
+                 "headless: go on from a state written by --checkpoint, with the same options (--frames may grow); "
+                 "the final image is the one an uninterrupted render gives")
+      ->type_name("FILE");
   app.add_option("--view-file", o.view_file,
                  "a view saved by the window (camera and all settings); options given as well override it");
   app.add_option("--state-file", o.state_file, "window: keep the current view and statistics in this JSON file")
@@ -121,6 +130,8 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv) {
     throw UsageError("--gl " + gl + " takes a screenshot: --out must be a .png file");
   if (o.ui && o.gl == HeadlessGl::kNone && o.headless)
     throw UsageError("--ui draws the panel through GL: add --gl egl|osmesa|auto");
+  if (!o.headless && (o.checkpoint_seconds > 0.0 || !o.resume_path.empty()))
+    throw UsageError(std::string(o.resume_path.empty() ? "--checkpoint" : "--resume") + " needs --headless");
   if (o.headless && o.out_path.empty() && o.export_default_scene.empty())
     throw UsageError("--headless needs --out FILE");
   return o;

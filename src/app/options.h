@@ -27,6 +27,8 @@ struct AppOptions {
   std::string view_file;              ///< --view-file: a view saved by the window
   std::string export_default_scene;   ///< when set: write the embedded scene as OBJ + MTL there and exit
   std::string state_file;             ///< --state-file: the window writes its view and statistics there (for tests)
+  double checkpoint_seconds = 0.0;    ///< headless: write the image so far and the resume state at this interval
+  std::string resume_path;            ///< headless: go on from this resume state (written by --checkpoint)
 };
 
 /// Parses argv. Returns nullopt when --help or --version printed something and the program should exit 0.

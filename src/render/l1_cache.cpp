@@ -102,6 +102,35 @@ void L1Cache::reset(uint64_t max_bytes) {
   generation = -1;
 }
 
+void L1Cache::write_state(ByteWriter& out) const {
+  out.put<int32_t>(generation);
+  out.put<uint64_t>(max_cells_per_shard_);
+  for (const Shard& shard : shards_) {
+    out.put<uint64_t>(shard.used);
+    out.put<uint64_t>(shard.refused);
+    out.put_array(shard.cells);
+  }
+}
+
+void L1Cache::read_state(ByteReader& in) {
+  generation = in.get<int32_t>("the L1 store");
+  max_cells_per_shard_ = in.get<uint64_t>("the L1 store");
+  if (max_cells_per_shard_ != 0 && !std::has_single_bit(max_cells_per_shard_))
+    throw ByteStreamError("an impossible L1 store");
+  for (Shard& shard : shards_) {
+    shard.used = in.get<uint64_t>("the L1 store");
+    shard.refused = in.get<uint64_t>("the L1 store");
+    shard.cells = in.get_array<L1CacheCell>(max_cells_per_shard_, "the L1 store");
+    if (!shard.cells.empty() && !std::has_single_bit(shard.cells.size()))
+      throw ByteStreamError("an impossible L1 store");
+    // A full table would make find() probe forever: the count must be true and leave an empty slot.
+    const auto filled =
+        std::count_if(shard.cells.begin(), shard.cells.end(), [](const L1CacheCell& c) { return c.samples != 0; });
+    if (static_cast<uint64_t>(filled) != shard.used || (!shard.cells.empty() && shard.used >= shard.cells.size()))
+      throw ByteStreamError("an impossible L1 store");
+  }
+}
+
 void L1Cache::clear() {
   for (Shard& s : shards_) s = Shard{};
 }

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/byte_stream.h"
 #include "core/math.h"
 #include "core/rng.h"
 #include "render/camera.h"
@@ -146,6 +147,10 @@ class L1Cache {
   void merge(const std::vector<std::vector<L1CacheRecord>>& batches, ThreadPool& pool);
 
   L1CacheStats stats() const;
+  /// The store's whole state, slot for slot, appended to a byte stream (a resumed render goes on with the same
+  /// store), and read back; reading throws ByteStreamError if the stream is cut short or impossible.
+  void write_state(ByteWriter& out) const;
+  void read_state(ByteReader& in);
   int generation = -1;  ///< the generation whose cells the store holds (-1: none yet)
 
  private:

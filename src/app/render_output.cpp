@@ -1,0 +1,275 @@
+// The parts of a headless render that do not depend on who traces the frames.
+#include "app/render_output.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "app/displayed_image.h"
+#include "app/split_output.h"
+#include "core/atomic_file.h"
+#include "image/image_output.h"
+#include "render/noise_estimate.h"
+#include "render/render_memory.h"
+#include "scene/obj_loader.h"
+#include "settings/compare.h"
+#include "settings/setting_table.h"
+#include "ui/headless_screenshot.h"
+
+namespace lueur {
+namespace {
+
+/// The settings written into the image: those given, with the frames done rather than the time they took here.
+Settings described_settings(const Settings& given, uint64_t frames_done) {
+  Settings described = given;
+  described.frames = static_cast<int>(frames_done);
+  described.time_limit = 0.0f;
+  described.target_noise = 0.0f;
+  return described;
+}
+
+/// The PNG through the display shaders of an off-screen EGL or OSMesa context, with the panel if asked, split with
+/// `right` if given.
+void write_gl_screenshot(const AppOptions& options, const Settings& described, const Film& film,
+                         const TracedScene& traced, const RunFigures& figures, const Film* right) {
+  PanelModel panel;
+  if (options.ui) {
+    panel.settings = options.settings;
+    panel.paused = true;
+    panel.stats.frames = film.frames;
+    panel.stats.seconds = figures.seconds;
+    // Headless frames are not timed one by one: the panel shows their mean.
+    panel.stats.last_frame_seconds = film.frames > 0 ? figures.seconds / static_cast<double>(film.frames) : 0.0;
+    panel.stats.rays = figures.rays;
+    panel.stats.l2_seconds = figures.l2_seconds;
+    panel.stats.l2_bounce_hits = figures.bounce_hits;
+    panel.stats.l2_reused = figures.reused;
+    panel.stats.l2_cached = figures.cached;
+    panel.stats.cache = figures.cache;
+    panel.noise = estimate_film_noise(film, options.settings.render.enabled, options.settings.weights,
+                                      options.settings.render.sampler);
+    panel.noise_history = figures.noise_history;
+    record_noise(panel, panel.noise, figures.seconds);
+    if (right) {
+      const Settings right_settings = *compared_settings(options.settings);
+      panel.comparing = true;
+      panel.stats.seconds = figures.left_seconds;
+      panel.right_noise = estimate_image_noise(*right, right_settings.render.enabled, right_settings.weights,
+                                               right_settings.render.sampler);
+      panel.right_stats.frames = right->frames;
+      panel.right_stats.seconds = figures.right_seconds;
+    }
+    panel.film_width = film.width;
+    panel.film_height = film.height;
+    describe_scene(panel, traced);
+  }
+  Screenshot shot;
+  try {
+    shot = render_headless_screenshot(options.gl, film, options.settings, options.ui ? &panel : nullptr, right);
+  } catch (const std::runtime_error& e) {
+    throw IoError(std::string("--gl ") + std::string(enum_name(kHeadlessGlNames, options.gl)) + ": " + e.what());
+  }
+  std::fprintf(stderr, "lueur: display path: %s\n", shot.context.c_str());
+  write_file_atomically(options.out_path, encode_png_rgb8(shot.rgb, shot.width, shot.height,
+                                                          describe_options(options.scene_path, described)));
+}
+
+/// One side of an A/B split: its image's estimated relMSE, its tracing time, and their product, the error it would
+/// have after one second of tracing if the error falls as 1/time (lower is better).
+void print_side(const std::string& name, const Film& film, const Settings& settings, double seconds) {
+  const NoiseEstimate e =
+      estimate_image_noise(film, settings.render.enabled, settings.weights, settings.render.sampler);
+  if (!e.known) {
+    std::fprintf(stderr, "lueur: %s: %.2f s of tracing, estimated relMSE unknown\n", name.c_str(), seconds);
+    return;
+  }
+  std::fprintf(stderr, "lueur: %s: %.2f s of tracing, estimated relMSE %.4g, relMSE x seconds %.4g\n", name.c_str(),
+               seconds, e.rel_mse, e.rel_mse * seconds);
+}
+
+/// The estimated noise of each rendered pass, then the combined image's as a plain "estimated relMSE X" last.
+void print_noise_summary(const Film& film, const RenderSettings& settings,
+                         const std::array<float, kPassCount>& weights) {
+  const FilmNoise noise = estimate_film_noise(film, settings.enabled, weights, settings.sampler);
+  const auto print = [&](const std::string& what, const NoiseEstimate& e) {
+    if (e.known)
+      std::fprintf(stderr, "lueur: %s: estimated relMSE %.4g (variance falls as frames^-%.2f)\n", what.c_str(),
+                   e.rel_mse, e.exponent);
+    else
+      std::fprintf(stderr, "lueur: %s: estimated relMSE unknown (it needs %llu frames)\n", what.c_str(),
+                   static_cast<unsigned long long>(frames_before_noise_estimate(settings.sampler)));
+  };
+  for (int p = 0; p < kPassCount; ++p)
+    if (settings.enabled[static_cast<size_t>(p)])
+      print(std::string(kPassNames[static_cast<size_t>(p)]) + " pass", noise.passes[static_cast<size_t>(p)]);
+  print("image", noise.image);
+}
+
+}  // namespace
+
+void check_output_path(const std::string& path) {
+  if (!is_supported_image_path(path))
+    throw IoError("cannot write '" + path + "': unknown image format (use .png, .pfm or .exr)");
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw IoError("cannot write '" + path + "': it is a directory");
+  fs::path dir = fs::path(path).parent_path();
+  if (dir.empty()) dir = ".";
+  if (!fs::is_directory(dir, ec)) throw IoError("cannot write '" + path + "': no directory '" + dir.string() + "'");
+  if (::access(dir.c_str(), W_OK) != 0) throw IoError("cannot write '" + path + "': directory is not writable");
+}
+
+MemoryBudget reserve_render_memory(const RenderSettings& settings, const RenderSettings* right) {
+  const MemoryBudget budget = available_memory();
+  const uint64_t needed = render_memory_bytes(settings) + (right ? render_memory_bytes(*right) : 0);
+  const std::string size = std::to_string(settings.width) + "x" + std::to_string(settings.height);
+  if (needed > budget.bytes)
+    throw UsageError("--size " + size + ": rendering needs about " + format_bytes(needed) +
+                     " of memory, more than the " + format_bytes(budget.bytes) + " available (" + budget.source + ")");
+  return {budget.bytes - needed, budget.source + ", less " + format_bytes(needed) + " for the " + size + " image"};
+}
+
+RenderJob prepare_render_job(const AppOptions& options) {
+  check_output_path(options.out_path);
+  RenderJob job;
+  const RenderSettings& settings = options.settings.render;
+  // An A/B split renders a second film with the compared setting changed, frame for frame with the first.
+  job.right = compared_settings(options.settings);
+  const MemoryBudget scene_memory = reserve_render_memory(settings, job.right ? &job.right->render : nullptr);
+  const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
+  job.opened = open_scene(options.scene_path, scene_options_of(options.settings), aspect, scene_memory);
+  for (const std::string& w : job.opened.warnings) std::fprintf(stderr, "lueur: warning: %s\n", w.c_str());
+  if (!options.settings.camera)
+    for (const std::string& note : job.opened.notes) std::fprintf(stderr, "lueur: %s\n", note.c_str());
+  job.camera = make_camera(camera_of(options.settings, job.opened.default_view), settings.width, settings.height);
+
+  job.film.reset(settings);
+  const std::optional<Layer> layer = options.settings.layer;
+  if (layer && !job.film.has(*layer))
+    throw UsageError("--view " + std::string(enum_name(kLayerNames, *layer)) +
+                     ": that layer is not rendered with these --passes/--reuse settings");
+  if (job.right) {
+    job.right_film.reset(job.right->render);
+    if (layer && !job.right_film.has(*layer))
+      throw UsageError("--view " + std::string(enum_name(kLayerNames, *layer)) +
+                       ": that layer is not rendered on the right side of --compare " + options.settings.compare);
+  }
+  return job;
+}
+
+void print_render_header(const AppOptions& options, const TracedScene& traced, const std::string& workers) {
+  const RenderSettings& settings = options.settings.render;
+  std::string textures;
+  if (!traced.scene.textures.empty())
+    textures = ", " + std::to_string(traced.scene.textures.size()) +
+               (traced.scene.textures.size() == 1 ? " texture (" : " textures (") +
+               format_bytes(traced.scene.texture_bytes()) + (traced.scene.has_cutouts() ? ", with cutouts)" : ")");
+  std::fprintf(stderr, "lueur: %s, %zu triangles, %zu emitters%s, %dx%d, %d frames, %s, accel %s\n",
+               traced.scene.name.c_str(), traced.scene.triangles.size(), traced.lights.size(), textures.c_str(),
+               settings.width, settings.height, options.settings.frames, workers.c_str(),
+               std::string(enum_name(kAccelKindNames, options.settings.accel)).c_str());
+}
+
+void record_noise_history(const AppOptions& options, const Film& film, double elapsed, RunFigures& figures) {
+  if (!options.ui || options.gl == HeadlessGl::kNone || !is_power_of_two(film.frames)) return;
+  const RenderSettings& settings = options.settings.render;
+  PanelModel history;
+  history.noise_history = std::move(figures.noise_history);
+  record_noise(history, estimate_film_noise(film, settings.enabled, options.settings.weights, settings.sampler),
+               elapsed);
+  figures.noise_history = std::move(history.noise_history);
+}
+
+void write_render_output(const AppOptions& options, const Film& film, const Film* right, const TracedScene& traced,
+                         const RunFigures& figures) {
+  const Settings described = described_settings(options.settings, film.frames);
+  if (options.gl != HeadlessGl::kNone) {
+    write_gl_screenshot(options, described, film, traced, figures, right);
+  } else if (right) {
+    write_split_image(options.out_path, film, *right, options.settings,
+                      describe_options(options.scene_path, described));
+  } else {
+    // The EXR holds every rendered layer; PNG and PFM show the combined image or the chosen --view.
+    write_image(options.out_path, displayed_image(film, options.settings), film_layer_images(film),
+                displayed_transform(options.settings), describe_options(options.scene_path, described));
+  }
+}
+
+std::string state_path_of(const std::string& out_path) { return out_path + ".lueur-state"; }
+
+RenderIdentity render_identity(const AppOptions& options, const TracedScene& traced) {
+  RenderIdentity identity;
+  for (const SettingInfo& info : setting_infos()) {
+    if (info.effect < SettingEffect::kRestart) continue;
+    identity.push_back(info.option() + " " + setting_text(options.settings, info.name).value_or("(unset)"));
+  }
+  identity.push_back("the scene '" + (options.scene_path.empty() ? std::string("(default)") : options.scene_path) +
+                     "' of " + std::to_string(traced.scene.triangles.size()) + " triangles");
+  return identity;
+}
+
+void write_checkpoint(const AppOptions& options, const Film& film, const Film* right, const TracedScene& traced,
+                      const RunFigures& figures) {
+  std::vector<const Film*> films{&film};
+  if (right) films.push_back(right);
+  write_render_output(options, film, right, traced, figures);
+  write_file_atomically(state_path_of(options.out_path), encode_film_state(render_identity(options, traced), films));
+}
+
+void resume_films(const AppOptions& options, const TracedScene& traced, const std::vector<Film*>& films) {
+  const std::string& path = options.resume_path;
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw UsageError("--resume '" + path + "': cannot read it");
+  const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  if (file.bad()) throw UsageError("--resume '" + path + "': cannot read it");
+  try {
+    decode_film_state(bytes, render_identity(options, traced), films);
+  } catch (const std::runtime_error& e) {
+    throw UsageError("--resume '" + path + "': " + e.what());
+  }
+  if (films.front()->frames > static_cast<uint64_t>(options.settings.frames))
+    throw UsageError("--resume '" + path + "': it already holds " + std::to_string(films.front()->frames) +
+                     " frames, more than --frames " + std::to_string(options.settings.frames));
+}
+
+void print_run_summary(const AppOptions& options, const Film& film, const Film* right, const RunFigures& figures) {
+  const RenderSettings& settings = options.settings.render;
+  const double elapsed = figures.seconds;
+  if (figures.dropped > 0)
+    std::fprintf(stderr,
+                 "lueur: warning: %llu pixel samples were not finite or too large for the image and were dropped "
+                 "(a scene of extreme scale or emission)\n",
+                 static_cast<unsigned long long>(figures.dropped));
+  std::fprintf(stderr, "lueur: %llu frames in %.2f s, %.1f M rays traced (%.2f Mrays/s)\n",
+               static_cast<unsigned long long>(film.frames), elapsed, static_cast<double>(figures.rays) * 1e-6,
+               elapsed > 0.0 ? static_cast<double>(figures.rays) * 1e-6 / elapsed : 0.0);
+  const uint64_t bounce_hits = figures.bounce_hits;
+  if (settings.pass_enabled(Pass::kL2))
+    std::fprintf(
+        stderr, "lueur: L2 took %.2f s; %.1f%% of its %.1f M bounce hits reused L1 (--reuse %s)\n", figures.l2_seconds,
+        bounce_hits ? 100.0 * static_cast<double>(figures.reused) / static_cast<double>(bounce_hits) : 0.0,
+        static_cast<double>(bounce_hits) * 1e-6, std::string(enum_name(kReuseModeNames, settings.reuse)).c_str());
+  if (settings.pass_enabled(Pass::kL2) && uses_cache(settings.reuse)) {
+    const auto share = [&](uint64_t n) {
+      return bounce_hits ? 100.0 * static_cast<double>(n) / static_cast<double>(bounce_hits) : 0.0;
+    };
+    std::fprintf(stderr,
+                 "lueur: L1 store: %.1f%% of the bounce hits took L1 from it, %.1f%% recomputed it; %llu cells, %.1f "
+                 "MiB of %d MiB%s\n",
+                 share(figures.cached), share(bounce_hits - figures.reused - figures.cached),
+                 static_cast<unsigned long long>(figures.cache.cells),
+                 static_cast<double>(figures.cache.bytes) / (1 << 20), settings.cache_mb,
+                 figures.cache.full ? " (full: new cells refused)" : "");
+  }
+  if (right) {
+    print_side("left (as set)", film, options.settings, figures.left_seconds);
+    print_side("right (" + options.settings.compare + ")", *right, *compared_settings(options.settings),
+               figures.right_seconds);
+  }
+  print_noise_summary(film, settings, options.settings.weights);
+}
+
+}  // namespace lueur

@@ -1,0 +1,83 @@
+// What every headless render shares, in one process (app/headless.cpp) or across MPI ranks (src/mpi/): checking the
+// output and the memory before the work, the header line, writing the image and the resume state, resuming, and the
+// summary at the end.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/options.h"
+#include "app/scene_source.h"
+#include "core/memory_budget.h"
+#include "render/film.h"
+#include "render/film_state.h"
+#include "render/l1_cache.h"
+#include "render/traced_scene.h"
+#include "ui/panel.h"
+
+namespace lueur {
+
+/// What a render did, for the summary and a --ui screenshot's panel.
+struct RunFigures {
+  double seconds = 0.0;
+  uint64_t rays = 0;
+  double l2_seconds = 0.0;
+  uint64_t bounce_hits = 0, reused = 0, cached = 0, dropped = 0;
+  L1CacheStats cache;
+  std::vector<NoisePoint> noise_history;           ///< the estimate at each power of two of the frames (for --ui)
+  double left_seconds = 0.0, right_seconds = 0.0;  ///< an A/B split's tracing time per side
+};
+
+/// A render about to start: the scene opened, the camera, the film (and, for an A/B split, the right side's
+/// settings and film), each checked against the settings.
+struct RenderJob {
+  OpenedScene opened;
+  Camera camera;
+  Film film;
+  std::optional<Settings> right;  ///< --compare: the settings of the split's right side
+  Film right_film;
+  std::vector<Film*> films() { return right ? std::vector<Film*>{&film, &right_film} : std::vector<Film*>{&film}; }
+};
+
+/// Checks the output path and the memory, opens the scene (printing its warnings and notes), and sizes the films.
+/// Throws UsageError, IoError or SceneError with one line.
+RenderJob prepare_render_job(const AppOptions& options);
+
+/// Refuses an output that could never be written before spending minutes rendering it. Throws IoError.
+void check_output_path(const std::string& path);
+
+/// Refuses an image whose buffers the machine cannot hold, before anything is loaded or allocated; returns what
+/// is left of the budget for the scene. Throws UsageError.
+MemoryBudget reserve_render_memory(const RenderSettings& settings, const RenderSettings* right);
+
+/// The header line: scene, triangles, emitters, textures, size, frames, who renders (`workers`), back-end.
+void print_render_header(const AppOptions& options, const TracedScene& traced, const std::string& workers);
+
+/// Appends the estimate at this power of two of the frames to `figures.noise_history` (only for a --ui screenshot).
+void record_noise_history(const AppOptions& options, const Film& film, double elapsed, RunFigures& figures);
+
+/// Writes the image of `film` (and `right`, for an A/B split) after `frames_done` frames, atomically: a PNG through
+/// the GL display path or the CPU, a PFM, or an EXR of every layer. Throws IoError.
+void write_render_output(const AppOptions& options, const Film& film, const Film* right, const TracedScene& traced,
+                         const RunFigures& figures);
+
+/// Where --checkpoint writes the resume state: beside the image, as OUT.lueur-state.
+std::string state_path_of(const std::string& out_path);
+
+/// The settings and scene that the resume state must match: every setting that changes the estimate (the table's
+/// restart and reload rows), the scene's path and size. Display settings and frame counts may change.
+RenderIdentity render_identity(const AppOptions& options, const TracedScene& traced);
+
+/// Writes the image so far and the resume state beside it, each atomically.
+void write_checkpoint(const AppOptions& options, const Film& film, const Film* right, const TracedScene& traced,
+                      const RunFigures& figures);
+
+/// Restores the films from --resume. Throws UsageError naming the file and the problem.
+void resume_films(const AppOptions& options, const TracedScene& traced, const std::vector<Film*>& films);
+
+/// The lines printed after a render: frames and rays, L2's reuse, the L1 store, each side of an A/B split, and the
+/// noise estimate of every pass and, last, of the image.
+void print_run_summary(const AppOptions& options, const Film& film, const Film* right, const RunFigures& figures);
+
+}  // namespace lueur

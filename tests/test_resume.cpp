@@ -1,0 +1,105 @@
+// --checkpoint and --resume: a render stopped or killed at any frame and resumed ends with the bytes of an
+// uninterrupted one, in every output format, with the L1 store and an A/B split; a state that does not match the
+// options is refused with one line naming what differs.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "test_support.h"
+
+namespace lueur {
+namespace {
+
+using test::file_exists;
+using test::make_temp_dir;
+using test::read_file;
+using test::run_lueur;
+using test::shell_quote;
+
+struct ResumeCase {
+  const char* name;
+  const char* options;
+  const char* extension;
+};
+
+class Resume : public ::testing::TestWithParam<ResumeCase> {};
+
+TEST_P(Resume, AKilledRenderResumedGivesTheUninterruptedBytes) {
+  const ResumeCase& c = GetParam();
+  const std::string dir = make_temp_dir(std::string("resume_") + c.name);
+  const std::string base = std::string("--headless --size 64x48 --frames 40 ") + c.options;
+  const std::string whole = dir + "/whole." + c.extension, part = dir + "/part." + c.extension;
+  const auto uninterrupted = run_lueur(base + " --threads 2 --out " + shell_quote(whole));
+  ASSERT_EQ(uninterrupted.exit_code, 0) << uninterrupted.output;
+
+  // Killed (SIGKILL: no chance to tidy up) once the first checkpoint is there, then resumed on another thread count;
+  // a second kill and resume on the way if the first run got far.
+  const std::string state = part + ".lueur-state";
+  const std::string script = shell_quote(LUEUR_EXECUTABLE) + " " + base + " --threads 1 --checkpoint 0.02 --out " +
+                             shell_quote(part) + " & pid=$!; while [ ! -f " + shell_quote(state) +
+                             " ]; do sleep 0.01; done; sleep 0.1; kill -9 $pid; wait $pid";
+  const auto killed = test::run_program("sh", "-c " + shell_quote(script));
+  EXPECT_NE(killed.exit_code, 0) << "the render finished before it could be killed: " << killed.output;
+  ASSERT_TRUE(file_exists(state));
+  ASSERT_TRUE(file_exists(part));  // the image so far, whole (written atomically)
+  const auto resumed = run_lueur(base + " --threads 2 --out " + shell_quote(part) + " --resume " + shell_quote(state));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("resuming"), std::string::npos) << resumed.output;
+  EXPECT_EQ(read_file(part), read_file(whole)) << "the resumed image differs from the uninterrupted one";
+}
+
+// PFM and EXR hold the float sums; PNG goes through the tone map; the store carries state from frame to frame; an
+// A/B split resumes both sides.
+INSTANTIATE_TEST_SUITE_P(Outputs, Resume,
+                         ::testing::Values(ResumeCase{"pfm", "", "pfm"},
+                                           ResumeCase{"exr", "--passes le,l1,l2,ao", "exr"},
+                                           ResumeCase{"png_sobol", "--sampler sobol", "png"},
+                                           ResumeCase{"store", "--reuse screen+cache", "pfm"},
+                                           ResumeCase{"split", "--compare lights=uniform", "png"}),
+                         [](const ::testing::TestParamInfo<ResumeCase>& p) { return std::string(p.param.name); });
+
+TEST(ResumeRefused, AStateThatDoesNotMatchTheOptionsIsRefusedWithOneLine) {
+  const std::string dir = make_temp_dir("resume_refused");
+  const std::string out = dir + "/out.pfm", state = out + ".lueur-state";
+  const std::string base = "--headless --size 32x24 --out " + shell_quote(out);
+  ASSERT_EQ(run_lueur(base + " --frames 6 --checkpoint 100").exit_code, 0);
+  ASSERT_TRUE(file_exists(state));
+
+  const auto refused = [&](const std::string& options, const std::string& message) {
+    const auto r = run_lueur(base + " " + options);
+    EXPECT_EQ(r.exit_code, 2) << options;
+    EXPECT_NE(r.output.find(message), std::string::npos) << options << ": " << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  };
+  const std::string resume = " --resume " + shell_quote(state);
+  refused("--frames 6 --l1-rays 4" + resume, "it was rendered with --l1-rays 16, not --l1-rays 4");
+  refused("--frames 6 --seed 9" + resume, "--seed");
+  refused("--frames 4" + resume, "it already holds 6 frames, more than --frames 4");
+  refused("--frames 6 --size 32x20" + resume, "--size");
+  refused("--frames 6 --resume " + shell_quote(out), "it is not a Lueur state file");
+  refused("--frames 6 --resume " + shell_quote(dir + "/none"), "cannot read it");
+  refused("--frames 6 --checkpoint -1", "--checkpoint");
+  refused("--frames 6 " + shell_quote(std::string(LUEUR_SOURCE_DIR) + "/assets/cornell-apple.obj") + resume,
+          "the scene");
+  // Cut short, or one byte altered.
+  std::string bytes = read_file(state);
+  const std::string cut = dir + "/cut.state", altered = dir + "/altered.state";
+  {
+    FILE* f = std::fopen(cut.c_str(), "wb");
+    std::fwrite(bytes.data(), 1, bytes.size() / 2, f);
+    std::fclose(f);
+    bytes[bytes.size() / 3] ^= 1;
+    f = std::fopen(altered.c_str(), "wb");
+    std::fwrite(bytes.data(), 1, bytes.size(), f);
+    std::fclose(f);
+  }
+  refused("--frames 6 --resume " + shell_quote(cut), "cut short or altered");
+  refused("--frames 6 --resume " + shell_quote(altered), "cut short or altered");
+  // Display settings and the frame count may change: the sums do not depend on them.
+  const auto more = run_lueur(base + " --frames 9 --exposure 1" + resume);
+  EXPECT_EQ(more.exit_code, 0) << more.output;
+}
+
+}  // namespace
+}  // namespace lueur
