@@ -10,6 +10,7 @@ LUEUR_PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libglm-dev libtinyobjloader-dev libstb-dev libtinyexr-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libembree-dev
+  libopenmpi-dev openmpi-bin  # lueur-mpi: batch renders across the ranks of an MPI job
   libglfw3-dev libimgui-dev libgl-dev libopengl-dev libegl-dev libosmesa6-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0
   xvfb xauth xdotool
   clang libclang-rt-14-dev  # sanitizer and fuzzing builds: scripts/sanitize.sh, scripts/fuzz.sh

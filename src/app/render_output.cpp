@@ -132,8 +132,8 @@ MemoryBudget reserve_render_memory(const RenderSettings& settings, const RenderS
   return {budget.bytes - needed, budget.source + ", less " + format_bytes(needed) + " for the " + size + " image"};
 }
 
-RenderJob prepare_render_job(const AppOptions& options) {
-  check_output_path(options.out_path);
+RenderJob prepare_render_job(const AppOptions& options, bool writes_output) {
+  if (writes_output) check_output_path(options.out_path);
   RenderJob job;
   const RenderSettings& settings = options.settings.render;
   // An A/B split renders a second film with the compared setting changed, frame for frame with the first.
@@ -141,8 +141,9 @@ RenderJob prepare_render_job(const AppOptions& options) {
   const MemoryBudget scene_memory = reserve_render_memory(settings, job.right ? &job.right->render : nullptr);
   const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
   job.opened = open_scene(options.scene_path, scene_options_of(options.settings), aspect, scene_memory);
-  for (const std::string& w : job.opened.warnings) std::fprintf(stderr, "lueur: warning: %s\n", w.c_str());
-  if (!options.settings.camera)
+  if (writes_output)
+    for (const std::string& w : job.opened.warnings) std::fprintf(stderr, "lueur: warning: %s\n", w.c_str());
+  if (writes_output && !options.settings.camera)
     for (const std::string& note : job.opened.notes) std::fprintf(stderr, "lueur: %s\n", note.c_str());
   job.camera = make_camera(camera_of(options.settings, job.opened.default_view), settings.width, settings.height);
 

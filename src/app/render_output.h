@@ -40,9 +40,10 @@ struct RenderJob {
   std::vector<Film*> films() { return right ? std::vector<Film*>{&film, &right_film} : std::vector<Film*>{&film}; }
 };
 
-/// Checks the output path and the memory, opens the scene (printing its warnings and notes), and sizes the films.
-/// Throws UsageError, IoError or SceneError with one line.
-RenderJob prepare_render_job(const AppOptions& options);
+/// Checks the output path (unless `writes_output` is false: an MPI rank other than 0) and the memory, opens the
+/// scene (printing its warnings and notes if `writes_output`), and sizes the films. Throws UsageError, IoError or
+/// SceneError with one line.
+RenderJob prepare_render_job(const AppOptions& options, bool writes_output = true);
 
 /// Refuses an output that could never be written before spending minutes rendering it. Throws IoError.
 void check_output_path(const std::string& path);

@@ -1,0 +1,47 @@
+// Largest-remainder shares and round ends.
+#include "render/frame_plan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace lueur {
+
+std::vector<uint64_t> share_frames(uint64_t count, const std::vector<double>& rates) {
+  const size_t n = rates.size();
+  std::vector<uint64_t> shares(n, 0);
+  if (n == 0) return shares;
+  double known_sum = 0.0;
+  size_t known = 0;
+  for (const double r : rates)
+    if (r > 0.0 && std::isfinite(r)) {
+      known_sum += r;
+      ++known;
+    }
+  const double fallback = known > 0 ? known_sum / static_cast<double>(known) : 1.0;
+  std::vector<double> weights(n);
+  for (size_t i = 0; i < n; ++i) weights[i] = rates[i] > 0.0 && std::isfinite(rates[i]) ? rates[i] : fallback;
+  const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
+  std::vector<double> remainders(n);
+  uint64_t given = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const double exact = static_cast<double>(count) * weights[i] / total;
+    shares[i] = std::min(count - given, static_cast<uint64_t>(std::floor(exact)));
+    given += shares[i];
+    remainders[i] = exact - std::floor(exact);
+  }
+  std::vector<size_t> order(n);
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return remainders[a] > remainders[b]; });
+  for (size_t k = 0; given < count; k = (k + 1) % n, ++given) ++shares[order[k]];
+  return shares;
+}
+
+uint64_t round_end(uint64_t done, uint64_t wanted, uint64_t total) {
+  if (done >= total) return total;
+  uint64_t next_power = 1;
+  while (next_power <= done) next_power <<= 1;
+  return std::min({total, next_power, done + std::max<uint64_t>(wanted, 1)});
+}
+
+}  // namespace lueur
