@@ -28,7 +28,7 @@ struct ByteWriter {
   void put_array(const std::vector<T>& values) {
     static_assert(std::is_trivially_copyable_v<T>);
     put<uint64_t>(values.size());
-    bytes.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+    if (!values.empty()) bytes.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
   }
   void put_string(std::string_view text) {
     put<uint64_t>(text.size());
@@ -55,7 +55,7 @@ struct ByteReader {
     if (count > max_count) throw ByteStreamError(std::string("impossible size of ") + what);
     need(count * sizeof(T), what);
     std::vector<T> values(count);
-    std::memcpy(values.data(), bytes.data() + at, count * sizeof(T));
+    if (count > 0) std::memcpy(values.data(), bytes.data() + at, count * sizeof(T));  // empty: data() may be null
     at += count * sizeof(T);
     return values;
   }

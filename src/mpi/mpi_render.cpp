@@ -207,6 +207,8 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
   std::vector<double> rates(static_cast<size_t>(world.size), 0.0);  // frames per second, rank 0's view
   const bool tty = ::isatty(STDERR_FILENO);
   bool stopped_by_noise = false, out_of_time = false;
+  double reduce_seconds = 0.0;  // rank 0's time in the reductions (every rank has reported: no waiting for a slow one)
+  int reductions = 0;
   try {
     while (done < total) {
       // The plan: this round's frames and each rank's share, in rank order.
@@ -275,7 +277,12 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
       }
       broadcast(decision);
       done = end;
-      if (decision.reduce) reduce_films(world, mine, job, end);
+      if (decision.reduce) {
+        const Clock::time_point reduce_start = Clock::now();
+        reduce_films(world, mine, job, end);
+        reduce_seconds += seconds_since(reduce_start);
+        ++reductions;
+      }
       if (world.root()) {
         if (decision.reduce) record_noise_history(options, job.film, elapsed, figures);
         if (decision.reduce && options.settings.target_noise > 0.0 &&
@@ -328,6 +335,11 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
     return 2;
   }
   print_run_summary(options, job.film, job.right ? &job.right_film : nullptr, figures);
+  uint64_t reduced_bytes = 0;
+  for (const Film* film : job.films())
+    for (const auto& layer : film->exact) reduced_bytes += layer.size() * sizeof(int64_t);
+  std::fprintf(stderr, "lueur: %d reductions of %.1f MiB over %d ranks took %.3f s in all\n", reductions,
+               static_cast<double>(reduced_bytes) / (1 << 20), world.size, reduce_seconds);
   std::printf("%s\n", options.out_path.c_str());
   return 0;
 }
