@@ -115,6 +115,28 @@ TEST(ExactFilm, AddingFramesMustNotSkipAPowerOfTwo) {
   EXPECT_THROW(film.add_exact(none, 6), std::logic_error);  // backwards
 }
 
+TEST(ExactFilm, ARenderThatKnowsItsLastFrameSkipsOnlySnapshotsItNeverReads) {
+  EXPECT_EQ(needed_snapshots_from(0), 0u);
+  EXPECT_EQ(needed_snapshots_from(7), 0u);  // 4, 2, 1: all kept
+  EXPECT_EQ(needed_snapshots_from(10), 1u);
+  EXPECT_EQ(needed_snapshots_from(64), 8u);
+  EXPECT_EQ(needed_snapshots_from(100), 8u);
+  EXPECT_EQ(needed_snapshots_from(128), 16u);
+  // Frames 0-99 in rounds that skip 1, 2 and 4 end with the snapshots of 100 frames rendered one by one.
+  RenderSettings settings = small_settings();
+  Film skipping, sequential;
+  skipping.reset(settings);
+  sequential.reset(settings);
+  skipping.unit = sequential.unit = 0x1p-32;
+  const ExactSums none = skipping.exact;
+  EXPECT_THROW(skipping.add_exact(none, 9, 8), std::logic_error);  // 8 is needed
+  EXPECT_THROW(skipping.add_exact(none, 17, 8), std::logic_error);
+  for (const uint64_t end : {8, 13, 16, 32, 50, 64, 100}) skipping.add_exact(none, end, 8);
+  for (uint64_t f = 1; f <= 100; ++f) sequential.add_exact(none, f);
+  for (size_t c = 0; c < kNoiseCheckpoints; ++c)
+    EXPECT_EQ(skipping.checkpoints[c].frames, sequential.checkpoints[c].frames);
+}
+
 TEST(ExactFilm, SamplesTooLargeOrNotFiniteAreDroppedWhole) {
   RenderSettings settings;
   settings.width = 4;

@@ -48,6 +48,25 @@ TEST(FramePlan, RoundsStopAtEveryPowerOfTwoAndAtTheEnd) {
   for (uint64_t done = 0; done < 300; done = round_end(done, 50, 300)) ends.push_back(round_end(done, 50, 300));
   for (uint64_t p = 1; p <= 256; p *= 2) EXPECT_NE(std::find(ends.begin(), ends.end(), p), ends.end()) << p;
   EXPECT_EQ(ends.back(), 300u);
+  // From `snapshots_from` on only: 1, 2 and 4 are passed when 8 is the lowest snapshot kept.
+  EXPECT_EQ(round_end(0, 6, 100, 8), 6u);
+  EXPECT_EQ(round_end(6, 6, 100, 8), 8u);
+  EXPECT_EQ(round_end(0, 100, 100, 8), 8u);
+}
+
+TEST(FramePlan, ARoundGivesEachWorkerAboutTheSameTime) {
+  // Unknown rates: one frame each.
+  EXPECT_EQ(plan_round(0, 100, 0, {0.0, 0.0}, 1.0), (std::vector<uint64_t>{1, 0}));  // cut at the power of two 1
+  EXPECT_EQ(plan_round(8, 100, 0, {0.0, 0.0, 0.0}, 1.0), (std::vector<uint64_t>{1, 1, 1}));
+  // Known rates: a second of work each, 3 and 6 frames, even though 9 is odd.
+  EXPECT_EQ(plan_round(16, 100, 0, {3.0, 6.0}, 1.0), (std::vector<uint64_t>{3, 6}));
+  EXPECT_EQ(plan_round(20, 100, 0, {2.6, 2.6}, 1.0), (std::vector<uint64_t>{3, 3}));
+  // Cut short by the next power of two, or by the end: what is left goes by rate.
+  EXPECT_EQ(plan_round(28, 100, 0, {3.0, 6.0}, 1.0), (std::vector<uint64_t>{1, 3}));
+  EXPECT_EQ(plan_round(96, 100, 0, {3.0, 6.0}, 1.0), (std::vector<uint64_t>{1, 3}));
+  EXPECT_EQ(plan_round(100, 100, 0, {3.0, 6.0}, 1.0), (std::vector<uint64_t>{0, 0}));
+  // A slow worker still gets a frame.
+  EXPECT_EQ(plan_round(40, 100, 0, {0.1, 10.0}, 1.0), (std::vector<uint64_t>{1, 10}));
 }
 
 }  // namespace

@@ -115,11 +115,12 @@ struct RankFilms {
 
 /// Collective: sums every rank's films into rank 0's job films, which then hold `frames_after` frames; every
 /// rank's own sums start again from zero.
-void reduce_films(const MpiWorld& world, RankFilms& mine, RenderJob& job, uint64_t frames_after) {
+void reduce_films(const MpiWorld& world, RankFilms& mine, RenderJob& job, uint64_t frames_after,
+                  uint64_t snapshots_from) {
   const auto reduce = [&](Film& part, Film& whole) {
     for (auto& layer : part.exact)
       if (!layer.empty()) reduce_sum_to_root(world, layer);
-    if (world.root()) whole.add_exact(part.exact, frames_after);
+    if (world.root()) whole.add_exact(part.exact, frames_after, snapshots_from);
     for (auto& layer : part.exact) std::fill(layer.begin(), layer.end(), 0);
   };
   reduce(mine.left, job.film);
@@ -200,6 +201,12 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
                             std::to_string(threads) + (threads == 1 ? " thread" : " threads"));
   }
 
+  // Rounds stop at the powers of two whose snapshots the noise estimate reads at the end; a render that may stop
+  // early (or plots the estimate at every power of two) stops at all of them. The early rounds are then not
+  // shorter than one frame per rank.
+  const bool may_stop_early = options.settings.time_limit > 0.0 || options.settings.target_noise > 0.0 ||
+                              (options.ui && options.gl != HeadlessGl::kNone);
+  const uint64_t snapshots_from = may_stop_early ? 0 : needed_snapshots_from(total);
   const Clock::time_point start = Clock::now();
   Clock::time_point last_checkpoint = start;
   const uint64_t first = done;
@@ -215,11 +222,9 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
       std::vector<uint64_t> shares(static_cast<size_t>(world.size), 0);
       uint64_t end = 0;
       if (world.root()) {
-        double speed = 0.0;
-        for (const double r : rates) speed += r;
-        const uint64_t wanted = speed > 0.0 ? static_cast<uint64_t>(speed * kRoundSeconds) : world.size;
-        end = round_end(done, std::max<uint64_t>(wanted, static_cast<uint64_t>(world.size)), total);
-        shares = share_frames(end - done, rates);
+        shares = plan_round(done, total, snapshots_from, rates, kRoundSeconds);
+        end = done;
+        for (const uint64_t share : shares) end += share;
       }
       broadcast(end);
       broadcast(shares);
@@ -272,14 +277,14 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
         const bool checkpoint_due =
             options.checkpoint_seconds > 0.0 && seconds_since(last_checkpoint) >= options.checkpoint_seconds;
         decision.stop = end == total || out_of_time;
-        decision.reduce =
-            decision.stop || is_power_of_two(end) || checkpoint_due || options.settings.target_noise > 0.0;
+        decision.reduce = decision.stop || (is_power_of_two(end) && end >= snapshots_from) || checkpoint_due ||
+                          options.settings.target_noise > 0.0;
       }
       broadcast(decision);
       done = end;
       if (decision.reduce) {
         const Clock::time_point reduce_start = Clock::now();
-        reduce_films(world, mine, job, end);
+        reduce_films(world, mine, job, end, snapshots_from);
         reduce_seconds += seconds_since(reduce_start);
         ++reductions;
       }

@@ -56,15 +56,13 @@ uint64_t Film::add_frame(const std::array<std::vector<Vec3>, kLayerCount>& value
   return dropped;
 }
 
-void Film::add_exact(const ExactSums& part, uint64_t frames_after) {
+void Film::add_exact(const ExactSums& part, uint64_t frames_after, uint64_t snapshots_from) {
   if (frames_after < frames) throw std::logic_error("Film::add_exact: the frame count cannot go down");
   if (frames_after == frames) return;
-  // The lowest power of two above the current count must not be skipped.
-  if (frames_after > frames) {
-    uint64_t next_power = 1;
-    while (next_power <= frames) next_power <<= 1;
-    if (frames_after > next_power) throw std::logic_error("Film::add_exact: a power of two of the frames was skipped");
-  }
+  // No power of two above the current count (and from `snapshots_from` on) may be skipped.
+  uint64_t next_power = 1;
+  while (next_power <= frames || next_power < snapshots_from) next_power <<= 1;
+  if (frames_after > next_power) throw std::logic_error("Film::add_exact: a power of two of the frames was skipped");
   for (size_t l = 0; l < kLayerCount; ++l) {
     if (exact[l].empty()) continue;
     if (part[l].size() != exact[l].size()) throw std::logic_error("Film::add_exact: the layers differ");

@@ -70,8 +70,10 @@ struct Film {
   uint64_t add_frame(const std::array<std::vector<Vec3>, kLayerCount>& values);
   /// Adds the sums of frames rendered elsewhere (another film's `exact`, an MPI reduction) and sets the frame count
   /// to `frames_after`, as if they had been rendered here. Throws std::logic_error if that would pass a power of two
-  /// of the frame count without stopping at it (the noise estimate's snapshot would be missing).
-  void add_exact(const ExactSums& part, uint64_t frames_after);
+  /// of the frame count, at or above `snapshots_from`, without stopping at it (its noise snapshot would be missing).
+  /// A render that knows its last frame needs no snapshot below the lowest of the last kNoiseCheckpoints powers of
+  /// two (needed_snapshots_from).
+  void add_exact(const ExactSums& part, uint64_t frames_after, uint64_t snapshots_from = 0);
   /// Remakes the float sums from the exact ones.
   void refresh_sums();
   /// Counts a frame whose values are in the exact sums: remakes the float sums and snapshots the pass sums when the
@@ -81,6 +83,14 @@ struct Film {
 
 /// Whether n is a power of two (0 is not).
 inline bool is_power_of_two(uint64_t n) { return n != 0 && (n & (n - 1)) == 0; }
+
+/// The lowest power of two whose snapshot a film of `final_frames` frames still holds (the last kNoiseCheckpoints
+/// powers of two up to it); 0 when every power is kept (fewer than 2^kNoiseCheckpoints frames).
+inline uint64_t needed_snapshots_from(uint64_t final_frames) {
+  uint64_t highest = 1;
+  while (highest <= final_frames / 2) highest <<= 1;
+  return final_frames == 0 ? 0 : highest >> (kNoiseCheckpoints - 1);
+}
 
 /// The running average of one layer (black if the layer has no samples).
 Image layer_average(const Film& film, Layer layer);

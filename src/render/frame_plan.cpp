@@ -37,11 +37,24 @@ std::vector<uint64_t> share_frames(uint64_t count, const std::vector<double>& ra
   return shares;
 }
 
-uint64_t round_end(uint64_t done, uint64_t wanted, uint64_t total) {
+uint64_t round_end(uint64_t done, uint64_t wanted, uint64_t total, uint64_t snapshots_from) {
   if (done >= total) return total;
   uint64_t next_power = 1;
-  while (next_power <= done) next_power <<= 1;
+  while (next_power <= done || next_power < snapshots_from) next_power <<= 1;
   return std::min({total, next_power, done + std::max<uint64_t>(wanted, 1)});
+}
+
+std::vector<uint64_t> plan_round(uint64_t done, uint64_t total, uint64_t snapshots_from,
+                                 const std::vector<double>& rates, double seconds) {
+  std::vector<uint64_t> wanted(rates.size(), 1);
+  uint64_t count = 0;
+  for (size_t i = 0; i < rates.size(); ++i) {
+    if (rates[i] > 0.0 && std::isfinite(rates[i]))
+      wanted[i] = std::max<uint64_t>(1, static_cast<uint64_t>(std::llround(std::min(rates[i] * seconds, 1e9))));
+    count += wanted[i];
+  }
+  const uint64_t end = round_end(done, count, total, snapshots_from);
+  return end - done == count ? wanted : share_frames(end - done, rates);
 }
 
 }  // namespace lueur

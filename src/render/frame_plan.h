@@ -14,7 +14,14 @@ namespace lueur {
 std::vector<uint64_t> share_frames(uint64_t count, const std::vector<double>& rates);
 
 /// The end of a round that starts after `done` frames: `wanted` frames more (at least 1), but never past `total`
-/// and never past the next power of two of the frame count, where the noise estimate takes its snapshot.
-uint64_t round_end(uint64_t done, uint64_t wanted, uint64_t total);
+/// and never past the next power of two of the frame count from `snapshots_from` on, where the noise estimate takes
+/// its snapshot (Film::add_exact).
+uint64_t round_end(uint64_t done, uint64_t wanted, uint64_t total, uint64_t snapshots_from = 0);
+
+/// Each worker's frames in the round that starts after `done`: about `seconds` of work each at its rate (at least
+/// one frame; one frame for a rate not yet known), so that all finish together, cut short to the round's end
+/// (round_end) and then shared out by rate. The shares sum to that end less `done`.
+std::vector<uint64_t> plan_round(uint64_t done, uint64_t total, uint64_t snapshots_from,
+                                 const std::vector<double>& rates, double seconds);
 
 }  // namespace lueur
