@@ -67,7 +67,7 @@ TEST(Mpi, AKilledRankEndsTheJobCleanlyAndItsCheckpointResumesOnOtherRanks) {
   // Rank 1 is killed (SIGKILL) once the first checkpoint is written.
   const std::string script =
       mpirun(3, base + " --threads 1 --checkpoint 0.05 --out " + shell_quote(part)) + " & job=$!; " + "while [ ! -f " +
-      shell_quote(state) + " ]; do sleep 0.02; done; sleep 0.2; " + "for p in $(pgrep -f " + shell_quote(part) +
+      shell_quote(state) + " ]; do sleep 0.02; done; sleep 0.05; " + "for p in $(pgrep -f " + shell_quote(part) +
       "); do " +
       "  if tr '\\0' '\\n' < /proc/$p/environ 2>/dev/null | grep -qx OMPI_COMM_WORLD_RANK=1; then kill -9 $p; fi; " +
       "done; wait $job";

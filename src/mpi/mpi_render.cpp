@@ -29,7 +29,8 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-/// How long a round lasts, about: rank 0 prints progress and checks the time limit once per round.
+/// How long a round lasts, about (less when checkpoints come more often): rank 0 prints progress and checks the
+/// time limit once per round.
 constexpr double kRoundSeconds = 1.0;
 
 /// What each rank tells rank 0 after a round.
@@ -207,6 +208,9 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
   const bool may_stop_early = options.settings.time_limit > 0.0 || options.settings.target_noise > 0.0 ||
                               (options.ui && options.gl != HeadlessGl::kNone);
   const uint64_t snapshots_from = may_stop_early ? 0 : needed_snapshots_from(total);
+  // A round ends in time for the next checkpoint.
+  const double round_seconds =
+      options.checkpoint_seconds > 0.0 ? std::min(kRoundSeconds, options.checkpoint_seconds) : kRoundSeconds;
   const Clock::time_point start = Clock::now();
   Clock::time_point last_checkpoint = start;
   const uint64_t first = done;
@@ -222,7 +226,7 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
       std::vector<uint64_t> shares(static_cast<size_t>(world.size), 0);
       uint64_t end = 0;
       if (world.root()) {
-        shares = plan_round(done, total, snapshots_from, rates, kRoundSeconds);
+        shares = plan_round(done, total, snapshots_from, rates, round_seconds);
         end = done;
         for (const uint64_t share : shares) end += share;
       }
