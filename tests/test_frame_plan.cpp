@@ -55,18 +55,30 @@ TEST(FramePlan, RoundsStopAtEveryPowerOfTwoAndAtTheEnd) {
 }
 
 TEST(FramePlan, ARoundGivesEachWorkerAboutTheSameTime) {
-  // Unknown rates: one frame each.
-  EXPECT_EQ(plan_round(0, 100, 0, {0.0, 0.0}, 1.0), (std::vector<uint64_t>{1, 0}));  // cut at the power of two 1
-  EXPECT_EQ(plan_round(8, 100, 0, {0.0, 0.0, 0.0}, 1.0), (std::vector<uint64_t>{1, 1, 1}));
+  // Unknown rates: one frame each, cut at the first stop (the power of two 1).
+  EXPECT_EQ(plan_round(0, 100, 0, {0.0, 0.0}, 1.0), (std::vector<uint64_t>{1, 0}));
+  EXPECT_EQ(plan_round(32, 100, 0, {0.0, 0.0, 0.0}, 1.0), (std::vector<uint64_t>{1, 1, 1}));
   // Known rates: a second of work each, 3 and 6 frames, even though 9 is odd.
-  EXPECT_EQ(plan_round(16, 100, 0, {3.0, 6.0}, 1.0), (std::vector<uint64_t>{3, 6}));
-  EXPECT_EQ(plan_round(20, 100, 0, {2.6, 2.6}, 1.0), (std::vector<uint64_t>{3, 3}));
-  // Cut short by the next power of two, or by the end: what is left goes by rate.
+  EXPECT_EQ(plan_round(33, 100, 0, {3.0, 6.0}, 1.0), (std::vector<uint64_t>{3, 6}));
+  EXPECT_EQ(plan_round(33, 100, 0, {2.6, 2.6}, 1.0), (std::vector<uint64_t>{3, 3}));
+  // Within two rounds of the next stop, the round goes to it, shared by rate: no short round is left behind.
+  EXPECT_EQ(plan_round(46, 100, 0, {3.0, 6.0}, 1.0), (std::vector<uint64_t>{6, 12}));  // 18 frames to 64
   EXPECT_EQ(plan_round(28, 100, 0, {3.0, 6.0}, 1.0), (std::vector<uint64_t>{1, 3}));
   EXPECT_EQ(plan_round(96, 100, 0, {3.0, 6.0}, 1.0), (std::vector<uint64_t>{1, 3}));
   EXPECT_EQ(plan_round(100, 100, 0, {3.0, 6.0}, 1.0), (std::vector<uint64_t>{0, 0}));
   // A slow worker still gets a frame.
   EXPECT_EQ(plan_round(40, 100, 0, {0.1, 10.0}, 1.0), (std::vector<uint64_t>{1, 10}));
+  // Walking the rounds of equal workers: every round but the first few (rates unknown, or cut at 1, 2, 4) is at
+  // least a round's worth of work, and the rounds reach every stop.
+  uint64_t done = 16;
+  std::vector<uint64_t> ends;
+  while (done < 1000) {
+    const std::vector<uint64_t> shares = plan_round(done, 1000, 0, {5.0, 5.0}, 1.0);
+    EXPECT_GE(sum(shares), 10u) << done;
+    done += sum(shares);
+    ends.push_back(done);
+  }
+  for (uint64_t p = 32; p <= 512; p *= 2) EXPECT_NE(std::find(ends.begin(), ends.end(), p), ends.end()) << p;
 }
 
 }  // namespace

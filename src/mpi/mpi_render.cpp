@@ -218,6 +218,7 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
   std::vector<double> rates(static_cast<size_t>(world.size), 0.0);  // frames per second, rank 0's view
   const bool tty = ::isatty(STDERR_FILENO);
   bool stopped_by_noise = false, out_of_time = false;
+  double busy_seconds = 0.0;    // the ranks' rendering time, summed
   double reduce_seconds = 0.0;  // rank 0's time in the reductions (every rank has reported: no waiting for a slow one)
   int reductions = 0;
   try {
@@ -267,7 +268,11 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
       if (world.root()) {
         for (size_t r = 0; r < reports.size(); ++r) {
           const RankReport& each = reports[r];
-          if (each.frames > 0 && each.seconds > 0.0) rates[r] = static_cast<double>(each.frames) / each.seconds;
+          // Smoothed over rounds: one slow frame on a shared machine must not swing the next shares.
+          if (each.frames > 0 && each.seconds > 0.0) {
+            const double rate = static_cast<double>(each.frames) / each.seconds;
+            rates[r] = rates[r] > 0.0 ? 0.5 * (rates[r] + rate) : rate;
+          }
           figures.rays += each.rays;
           figures.bounce_hits += each.bounce_hits;
           figures.reused += each.reused;
@@ -276,6 +281,7 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
           figures.l2_seconds += each.l2_seconds;
           figures.left_seconds += each.left_seconds;
           figures.right_seconds += each.right_seconds;
+          busy_seconds += each.seconds;
         }
         out_of_time = options.settings.time_limit > 0.0 && elapsed >= options.settings.time_limit;
         const bool checkpoint_due =
@@ -347,8 +353,10 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
   uint64_t reduced_bytes = 0;
   for (const Film* film : job.films())
     for (const auto& layer : film->exact) reduced_bytes += layer.size() * sizeof(int64_t);
-  std::fprintf(stderr, "lueur: %d reductions of %.1f MiB over %d ranks took %.3f s in all\n", reductions,
-               static_cast<double>(reduced_bytes) / (1 << 20), world.size, reduce_seconds);
+  std::fprintf(stderr,
+               "lueur: the %d ranks rendered %.1f%% of the time; %d reductions of %.1f MiB took %.3f s in all\n",
+               world.size, 100.0 * busy_seconds / (world.size * figures.seconds), reductions,
+               static_cast<double>(reduced_bytes) / (1 << 20), reduce_seconds);
   std::printf("%s\n", options.out_path.c_str());
   return 0;
 }

@@ -53,8 +53,11 @@ std::vector<uint64_t> plan_round(uint64_t done, uint64_t total, uint64_t snapsho
       wanted[i] = std::max<uint64_t>(1, static_cast<uint64_t>(std::llround(std::min(rates[i] * seconds, 1e9))));
     count += wanted[i];
   }
-  const uint64_t end = round_end(done, count, total, snapshots_from);
-  return end - done == count ? wanted : share_frames(end - done, rates);
+  // A round never leaves a short one behind it before the next stop (a power of two or the end), where a fast worker
+  // would wait for a slow one's last frame: within two rounds of the stop, this round goes all the way to it.
+  const uint64_t stop = round_end(done, total, total, snapshots_from);
+  if (stop - done <= 2 * count) return share_frames(stop - done, rates);
+  return wanted;
 }
 
 }  // namespace lueur

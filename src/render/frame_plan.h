@@ -19,8 +19,9 @@ std::vector<uint64_t> share_frames(uint64_t count, const std::vector<double>& ra
 uint64_t round_end(uint64_t done, uint64_t wanted, uint64_t total, uint64_t snapshots_from = 0);
 
 /// Each worker's frames in the round that starts after `done`: about `seconds` of work each at its rate (at least
-/// one frame; one frame for a rate not yet known), so that all finish together, cut short to the round's end
-/// (round_end) and then shared out by rate. The shares sum to that end less `done`.
+/// one frame; one frame for a rate not yet known), so that all finish together. Within two such rounds of the next
+/// stop (round_end: a power of two or the end), the round goes to the stop instead, its frames shared out by rate,
+/// so that no short round is left. The shares sum to the round's end less `done`.
 std::vector<uint64_t> plan_round(uint64_t done, uint64_t total, uint64_t snapshots_from,
                                  const std::vector<double>& rates, double seconds);
 
