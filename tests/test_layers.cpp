@@ -27,6 +27,7 @@ const std::map<std::string, std::set<std::string>> kAllowed = {
     {"ui", {"core", "scene", "bvh", "accel", "render", "settings", "image", "display", "ui"}},
     {"app", {"core", "scene", "bvh", "accel", "render", "settings", "image", "display", "ui", "app"}},
     {"bench", {"core", "scene", "bvh", "accel", "render", "settings", "image", "bench"}},
+    {"mpi", {"core", "scene", "bvh", "accel", "render", "settings", "image", "display", "ui", "app", "mpi"}},
 };
 
 /// The core library's folders: no windowing, GL or UI library.
@@ -86,6 +87,18 @@ TEST(Layers, TheCoreLibraryNeverSeesGlGlfwOrImGui) {
     for (const Include& include : includes_under(src / folder))
       EXPECT_FALSE(std::regex_search(include.header, windowing))
           << "src/" << include.file << ":" << include.line << " includes " << include.header;
+}
+
+TEST(Layers, OnlyLueurMpiSeesMpi) {
+  const fs::path src = fs::path(LUEUR_SOURCE_DIR) / "src";
+  size_t seen = 0;
+  for (const auto& [folder, below] : kAllowed)
+    for (const Include& include : includes_under(src / folder)) {
+      if (include.header != "mpi.h") continue;
+      ++seen;
+      EXPECT_EQ(folder, "mpi") << "src/" << include.file << ":" << include.line << " includes mpi.h";
+    }
+  EXPECT_GT(seen, 0u) << "src/mpi no longer includes mpi.h: is this test still looking at the right thing?";
 }
 
 }  // namespace
