@@ -3,6 +3,7 @@
 // alone reads and writes files.
 #include "mpi/mpi_render.h"
 
+#include <sched.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -66,6 +67,14 @@ void install_stop_message(const AppOptions& options) {
   std::signal(SIGTERM, on_stop_signal);
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGHUP, on_stop_signal);
+}
+
+/// How many CPUs this process may run on (its affinity mask, which mpirun's binding sets).
+int cpus_allowed() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) != 0) return static_cast<int>(std::thread::hardware_concurrency());
+  return std::max(1, CPU_COUNT(&set));
 }
 
 /// One line for an error, as lueur prints it.
@@ -185,10 +194,18 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
   uint64_t done = job.film.frames;
   broadcast(done);
 
-  // Ranks that share a machine share its cores.
-  const int threads = options.threads > 0
-                          ? options.threads
-                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / world.ranks_on_node);
+  // Ranks that share a machine share its cores, as far as mpirun's binding lets them: Open MPI binds each rank to one
+  // core when there are two ranks or fewer, where threads beyond the first would only take turns.
+  const int node_share = std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / world.ranks_on_node);
+  const int allowed = cpus_allowed();
+  const int threads = options.threads > 0 ? options.threads : std::min(node_share, allowed);
+  int bound = allowed < node_share ? 1 : 0, any_bound = 0;
+  MPI_Allreduce(&bound, &any_bound, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  if (world.root() && any_bound)
+    std::fprintf(stderr,
+                 "lueur: warning: mpirun bound the ranks to fewer CPUs than their share of a machine (rank 0: %d of "
+                 "%d): add --bind-to none, or --map-by ppr:1:node:PE=N, to use them all\n",
+                 allowed, node_share);
   ThreadPool pool(threads);
   RankFilms mine;
   mine.reset(job, unit);
