@@ -9,18 +9,12 @@
 
 #include "app/render_output.h"
 #include "app/scene_source.h"
+#include "core/stopwatch.h"
 #include "render/noise_estimate.h"
 #include "render/renderer.h"
 #include "settings/compare.h"
 
 namespace lueur {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-}  // namespace
 
 int run_headless(const AppOptions& options) {
   RenderJob job = prepare_render_job(options);
@@ -49,23 +43,9 @@ int run_headless(const AppOptions& options) {
   RunningNoiseEstimate running_noise;  // for the target, remade at powers of two of the frames
   const uint64_t first = film.frames;
   while (film.frames < static_cast<uint64_t>(frames)) {
-    const Clock::time_point frame_start = Clock::now();
-    const FrameResult frame = render_frame(traced, camera, settings, film, pool);
-    figures.left_seconds += seconds_since(frame_start);
-    if (right) {
-      const Clock::time_point right_start = Clock::now();
-      const FrameResult right_frame = render_frame(traced, camera, right->render, right_film, pool);
-      figures.rays += right_frame.rays;
-      figures.dropped += right_frame.dropped_samples;
-      figures.right_seconds += seconds_since(right_start);
-    }
-    figures.rays += frame.rays;
-    figures.bounce_hits += frame.l2_bounce_hits;
-    figures.reused += frame.l2_reused;
-    figures.cached += frame.l2_cached;
+    const FrameResult frame = render_frame_pair(traced, camera, settings, film, right ? &right->render : nullptr,
+                                                right ? &right_film : nullptr, pool, figures.tally);
     figures.cache = frame.cache;
-    figures.dropped += frame.dropped_samples;
-    figures.l2_seconds += frame.l2_seconds;
     const double elapsed = seconds_since(start);
     const uint64_t done = film.frames;
     out_of_time = time_limit > 0.0 && elapsed >= time_limit;

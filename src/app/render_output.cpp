@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include "app/displayed_image.h"
 #include "app/split_output.h"
 #include "core/atomic_file.h"
+#include "core/stopwatch.h"
 #include "image/image_output.h"
 #include "render/noise_estimate.h"
 #include "render/render_memory.h"
@@ -43,11 +45,11 @@ void write_gl_screenshot(const AppOptions& options, const Settings& described, c
     panel.stats.seconds = figures.seconds;
     // Headless frames are not timed one by one: the panel shows their mean.
     panel.stats.last_frame_seconds = film.frames > 0 ? figures.seconds / static_cast<double>(film.frames) : 0.0;
-    panel.stats.rays = figures.rays;
-    panel.stats.l2_seconds = figures.l2_seconds;
-    panel.stats.l2_bounce_hits = figures.bounce_hits;
-    panel.stats.l2_reused = figures.reused;
-    panel.stats.l2_cached = figures.cached;
+    panel.stats.rays = figures.tally.rays;
+    panel.stats.l2_seconds = figures.tally.l2_seconds;
+    panel.stats.l2_bounce_hits = figures.tally.bounce_hits;
+    panel.stats.l2_reused = figures.tally.reused;
+    panel.stats.l2_cached = figures.tally.cached;
     panel.stats.cache = figures.cache;
     panel.noise = estimate_film_noise(film, options.settings.render.enabled, options.settings.weights,
                                       options.settings.render.sampler);
@@ -56,11 +58,11 @@ void write_gl_screenshot(const AppOptions& options, const Settings& described, c
     if (right) {
       const Settings right_settings = *compared_settings(options.settings);
       panel.comparing = true;
-      panel.stats.seconds = figures.left_seconds;
+      panel.stats.seconds = figures.tally.left_seconds;
       panel.right_noise = estimate_image_noise(*right, right_settings.render.enabled, right_settings.weights,
                                                right_settings.render.sampler);
       panel.right_stats.frames = right->frames;
-      panel.right_stats.seconds = figures.right_seconds;
+      panel.right_stats.seconds = figures.tally.right_seconds;
     }
     panel.film_width = film.width;
     panel.film_height = film.height;
@@ -109,6 +111,39 @@ void print_noise_summary(const Film& film, const RenderSettings& settings,
 }
 
 }  // namespace
+
+void FrameTally::add(const FrameTally& other) {
+  rays += other.rays;
+  bounce_hits += other.bounce_hits;
+  reused += other.reused;
+  cached += other.cached;
+  dropped += other.dropped;
+  l2_seconds += other.l2_seconds;
+  left_seconds += other.left_seconds;
+  right_seconds += other.right_seconds;
+}
+
+FrameResult render_frame_pair(const TracedScene& traced, const Camera& camera, const RenderSettings& left_settings,
+                              Film& left, const RenderSettings* right_settings, Film* right, ThreadPool& pool,
+                              FrameTally& tally) {
+  const Clock::time_point left_start = Clock::now();
+  const FrameResult frame = render_frame(traced, camera, left_settings, left, pool);
+  tally.left_seconds += seconds_since(left_start);
+  if (right) {
+    const Clock::time_point right_start = Clock::now();
+    const FrameResult right_frame = render_frame(traced, camera, *right_settings, *right, pool);
+    tally.rays += right_frame.rays;
+    tally.dropped += right_frame.dropped_samples;
+    tally.right_seconds += seconds_since(right_start);
+  }
+  tally.rays += frame.rays;
+  tally.bounce_hits += frame.l2_bounce_hits;
+  tally.reused += frame.l2_reused;
+  tally.cached += frame.l2_cached;
+  tally.dropped += frame.dropped_samples;
+  tally.l2_seconds += frame.l2_seconds;
+  return frame;
+}
 
 void check_output_path(const std::string& path) {
   if (!is_supported_image_path(path))
@@ -239,19 +274,20 @@ void resume_films(const AppOptions& options, const TracedScene& traced, const st
 void print_run_summary(const AppOptions& options, const Film& film, const Film* right, const RunFigures& figures) {
   const RenderSettings& settings = options.settings.render;
   const double elapsed = figures.seconds;
-  if (figures.dropped > 0)
+  if (figures.tally.dropped > 0)
     std::fprintf(stderr,
                  "lueur: warning: %llu pixel samples were not finite or too large for the image and were dropped "
                  "(a scene of extreme scale or emission)\n",
-                 static_cast<unsigned long long>(figures.dropped));
+                 static_cast<unsigned long long>(figures.tally.dropped));
   std::fprintf(stderr, "lueur: %llu frames in %.2f s, %.1f M rays traced (%.2f Mrays/s)\n",
-               static_cast<unsigned long long>(film.frames), elapsed, static_cast<double>(figures.rays) * 1e-6,
-               elapsed > 0.0 ? static_cast<double>(figures.rays) * 1e-6 / elapsed : 0.0);
-  const uint64_t bounce_hits = figures.bounce_hits;
+               static_cast<unsigned long long>(film.frames), elapsed, static_cast<double>(figures.tally.rays) * 1e-6,
+               elapsed > 0.0 ? static_cast<double>(figures.tally.rays) * 1e-6 / elapsed : 0.0);
+  const uint64_t bounce_hits = figures.tally.bounce_hits;
   if (settings.pass_enabled(Pass::kL2))
     std::fprintf(
-        stderr, "lueur: L2 took %.2f s; %.1f%% of its %.1f M bounce hits reused L1 (--reuse %s)\n", figures.l2_seconds,
-        bounce_hits ? 100.0 * static_cast<double>(figures.reused) / static_cast<double>(bounce_hits) : 0.0,
+        stderr, "lueur: L2 took %.2f s; %.1f%% of its %.1f M bounce hits reused L1 (--reuse %s)\n",
+        figures.tally.l2_seconds,
+        bounce_hits ? 100.0 * static_cast<double>(figures.tally.reused) / static_cast<double>(bounce_hits) : 0.0,
         static_cast<double>(bounce_hits) * 1e-6, std::string(enum_name(kReuseModeNames, settings.reuse)).c_str());
   if (settings.pass_enabled(Pass::kL2) && uses_cache(settings.reuse)) {
     const auto share = [&](uint64_t n) {
@@ -260,15 +296,15 @@ void print_run_summary(const AppOptions& options, const Film& film, const Film* 
     std::fprintf(stderr,
                  "lueur: L1 store: %.1f%% of the bounce hits took L1 from it, %.1f%% recomputed it; %llu cells, %.1f "
                  "MiB of %d MiB%s\n",
-                 share(figures.cached), share(bounce_hits - figures.reused - figures.cached),
+                 share(figures.tally.cached), share(bounce_hits - figures.tally.reused - figures.tally.cached),
                  static_cast<unsigned long long>(figures.cache.cells),
                  static_cast<double>(figures.cache.bytes) / (1 << 20), settings.cache_mb,
                  figures.cache.full ? " (full: new cells refused)" : "");
   }
   if (right) {
-    print_side("left (as set)", film, options.settings, figures.left_seconds);
+    print_side("left (as set)", film, options.settings, figures.tally.left_seconds);
     print_side("right (" + options.settings.compare + ")", *right, *compared_settings(options.settings),
-               figures.right_seconds);
+               figures.tally.right_seconds);
   }
   print_noise_summary(film, settings, options.settings.weights);
 }

@@ -13,21 +13,33 @@
 #include "render/film.h"
 #include "render/film_state.h"
 #include "render/l1_cache.h"
+#include "render/renderer.h"
 #include "render/traced_scene.h"
 #include "ui/panel.h"
 
 namespace lueur {
 
+/// What frames cost and found, added up. Plain numbers only: lueur-mpi gathers it from every rank.
+struct FrameTally {
+  uint64_t rays = 0, bounce_hits = 0, reused = 0, cached = 0, dropped = 0;
+  double l2_seconds = 0.0;
+  double left_seconds = 0.0, right_seconds = 0.0;  ///< an A/B split's tracing time per side
+  void add(const FrameTally& other);
+};
+
 /// What a render did, for the summary and a --ui screenshot's panel.
 struct RunFigures {
   double seconds = 0.0;
-  uint64_t rays = 0;
-  double l2_seconds = 0.0;
-  uint64_t bounce_hits = 0, reused = 0, cached = 0, dropped = 0;
+  FrameTally tally;
   L1CacheStats cache;
-  std::vector<NoisePoint> noise_history;           ///< the estimate at each power of two of the frames (for --ui)
-  double left_seconds = 0.0, right_seconds = 0.0;  ///< an A/B split's tracing time per side
+  std::vector<NoisePoint> noise_history;  ///< the estimate at each power of two of the frames (for --ui)
 };
+
+/// Renders the next frame of `left` and, for an A/B split, of `right` (rendered with `right_settings`), timing each
+/// side, and adds what they cost to `tally`. Returns the left side's result.
+FrameResult render_frame_pair(const TracedScene& traced, const Camera& camera, const RenderSettings& left_settings,
+                              Film& left, const RenderSettings* right_settings, Film* right, ThreadPool& pool,
+                              FrameTally& tally);
 
 /// A render about to start: the scene opened, the camera, the film (and, for an A/B split, the right side's
 /// settings and film), each checked against the settings.

@@ -8,16 +8,14 @@
 #include <cmath>
 #include <string>
 
+#include "core/stopwatch.h"
 #include "render/renderer.h"
 #include "scene/default_scene.h"
 
 namespace lueur::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using Json = nlohmann::ordered_json;
-
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 /// What a variant is compared on: one layer, or the weighted combination of the enabled passes.
 struct Measure {

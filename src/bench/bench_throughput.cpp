@@ -4,12 +4,10 @@
 #include <algorithm>
 #include <chrono>
 
+#include "core/stopwatch.h"
+
 namespace lueur::bench {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // Rays per task: large enough that handing out tasks costs nothing, small enough to balance two threads.
 constexpr int kChunk = 512;

@@ -17,6 +17,7 @@
 #include "app/options.h"
 #include "app/render_output.h"
 #include "core/atomic_file.h"
+#include "core/stopwatch.h"
 #include "render/frame_plan.h"
 #include "render/noise_estimate.h"
 #include "render/renderer.h"
@@ -26,10 +27,6 @@
 namespace lueur {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
 /// How long a round lasts, about (less when checkpoints come more often): rank 0 prints progress and checks the
 /// time limit once per round.
 constexpr double kRoundSeconds = 1.0;
@@ -38,8 +35,7 @@ constexpr double kRoundSeconds = 1.0;
 struct RankReport {
   uint64_t frames = 0;
   double seconds = 0.0;  ///< rendering time of its share
-  uint64_t rays = 0, bounce_hits = 0, reused = 0, cached = 0, dropped = 0;
-  double l2_seconds = 0.0, left_seconds = 0.0, right_seconds = 0.0;
+  FrameTally tally;
 };
 
 /// What rank 0 decides after a round.
@@ -258,24 +254,9 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
       const Clock::time_point round_start = Clock::now();
       mine.left.frames = my_first;
       mine.right.frames = my_first;
-      for (uint64_t f = 0; f < my_count; ++f) {
-        const Clock::time_point frame_start = Clock::now();
-        const FrameResult frame = render_frame(traced, job.camera, settings, mine.left, pool);
-        report.left_seconds += seconds_since(frame_start);
-        if (mine.has_right) {
-          const Clock::time_point right_start = Clock::now();
-          const FrameResult right = render_frame(traced, job.camera, job.right->render, mine.right, pool);
-          report.rays += right.rays;
-          report.dropped += right.dropped_samples;
-          report.right_seconds += seconds_since(right_start);
-        }
-        report.rays += frame.rays;
-        report.bounce_hits += frame.l2_bounce_hits;
-        report.reused += frame.l2_reused;
-        report.cached += frame.l2_cached;
-        report.dropped += frame.dropped_samples;
-        report.l2_seconds += frame.l2_seconds;
-      }
+      for (uint64_t f = 0; f < my_count; ++f)
+        render_frame_pair(traced, job.camera, settings, mine.left, mine.has_right ? &job.right->render : nullptr,
+                          mine.has_right ? &mine.right : nullptr, pool, report.tally);
       report.frames = my_count;
       report.seconds = seconds_since(round_start);
       const std::vector<RankReport> reports = gather(world, report);
@@ -290,14 +271,7 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
             const double rate = static_cast<double>(each.frames) / each.seconds;
             rates[r] = rates[r] > 0.0 ? 0.5 * (rates[r] + rate) : rate;
           }
-          figures.rays += each.rays;
-          figures.bounce_hits += each.bounce_hits;
-          figures.reused += each.reused;
-          figures.cached += each.cached;
-          figures.dropped += each.dropped;
-          figures.l2_seconds += each.l2_seconds;
-          figures.left_seconds += each.left_seconds;
-          figures.right_seconds += each.right_seconds;
+          figures.tally.add(each.tally);
           busy_seconds += each.seconds;
         }
         out_of_time = options.settings.time_limit > 0.0 && elapsed >= options.settings.time_limit;
