@@ -81,16 +81,7 @@ int run_headless(const AppOptions& options) {
   }
   figures.seconds = seconds_since(start);
   if (tty) std::fprintf(stderr, "\n");
-  if (out_of_time && !stopped_by_noise)
-    std::fprintf(stderr, "lueur: time limit of %g s reached after %llu of %d frames\n", time_limit,
-                 static_cast<unsigned long long>(film.frames), frames);
-  if (target_noise > 0.0 && !stopped_by_noise)
-    std::fprintf(stderr, "lueur: target noise %g not reached in %llu frames (raise --frames)\n", target_noise,
-                 static_cast<unsigned long long>(film.frames));
-  if (options.checkpoint_seconds > 0.0)
-    write_checkpoint(options, film, right ? &right_film : nullptr, traced, figures);
-  else
-    write_render_output(options, film, right ? &right_film : nullptr, traced, figures);
+  finish_render(options, film, right ? &right_film : nullptr, traced, figures, out_of_time, stopped_by_noise);
   print_run_summary(options, film, right ? &right_film : nullptr, figures);
   std::printf("%s\n", options.out_path.c_str());
   return 0;

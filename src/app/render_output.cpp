@@ -255,6 +255,20 @@ void write_checkpoint(const AppOptions& options, const Film& film, const Film* r
   write_file_atomically(state_path_of(options.out_path), encode_film_state(render_identity(options, traced), films));
 }
 
+void finish_render(const AppOptions& options, const Film& film, const Film* right, const TracedScene& traced,
+                   const RunFigures& figures, bool out_of_time, bool stopped_by_noise) {
+  if (out_of_time && !stopped_by_noise)
+    std::fprintf(stderr, "lueur: time limit of %g s reached after %llu of %d frames\n", options.settings.time_limit,
+                 static_cast<unsigned long long>(film.frames), options.settings.frames);
+  if (options.settings.target_noise > 0.0 && !stopped_by_noise)
+    std::fprintf(stderr, "lueur: target noise %g not reached in %llu frames (raise --frames)\n",
+                 options.settings.target_noise, static_cast<unsigned long long>(film.frames));
+  if (options.checkpoint_seconds > 0.0)
+    write_checkpoint(options, film, right, traced, figures);
+  else
+    write_render_output(options, film, right, traced, figures);
+}
+
 void resume_films(const AppOptions& options, const TracedScene& traced, const std::vector<Film*>& films) {
   const std::string& path = options.resume_path;
   std::ifstream file(path, std::ios::binary);

@@ -86,6 +86,11 @@ RenderIdentity render_identity(const AppOptions& options, const TracedScene& tra
 void write_checkpoint(const AppOptions& options, const Film& film, const Film* right, const TracedScene& traced,
                       const RunFigures& figures);
 
+/// The end of a render: says why it stopped before its last frame, if it did, and writes the image (and, with
+/// --checkpoint, the resume state). Throws IoError.
+void finish_render(const AppOptions& options, const Film& film, const Film* right, const TracedScene& traced,
+                   const RunFigures& figures, bool out_of_time, bool stopped_by_noise);
+
 /// Restores the films from --resume. Throws UsageError naming the file and the problem.
 void resume_films(const AppOptions& options, const TracedScene& traced, const std::vector<Film*>& films);
 

@@ -325,17 +325,9 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
   if (!world.root()) return 0;
   figures.seconds = seconds_since(start);
   if (tty) std::fprintf(stderr, "\n");
-  if (out_of_time && !stopped_by_noise)
-    std::fprintf(stderr, "lueur: time limit of %g s reached after %llu of %llu frames\n", options.settings.time_limit,
-                 static_cast<unsigned long long>(job.film.frames), static_cast<unsigned long long>(total));
-  if (options.settings.target_noise > 0.0 && !stopped_by_noise)
-    std::fprintf(stderr, "lueur: target noise %g not reached in %llu frames (raise --frames)\n",
-                 options.settings.target_noise, static_cast<unsigned long long>(job.film.frames));
   try {
-    if (options.checkpoint_seconds > 0.0)
-      write_checkpoint(options, job.film, job.right ? &job.right_film : nullptr, traced, figures);
-    else
-      write_render_output(options, job.film, job.right ? &job.right_film : nullptr, traced, figures);
+    finish_render(options, job.film, job.right ? &job.right_film : nullptr, traced, figures, out_of_time,
+                  stopped_by_noise);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "lueur-mpi: error: %s\n", error_line(e).c_str());
     return 2;
