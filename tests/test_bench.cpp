@@ -138,13 +138,14 @@ TEST(Bench, FrameSectionCountsTheRenderersRaysByQuery) {
     EXPECT_EQ(f["scene"], "default");
     const int count = f["frames"].get<int>();
     EXPECT_GE(count, 2);
-    // `le_rays` camera rays per pixel of the 24 x 24 smoke view per frame, the first of which shades: up to 16
-    // bounce rays at its hit, and the shadow rays of 16 L1 samples there plus 2 at each recomputed bounce hit.
+    // Per pixel of the 24 x 24 smoke view per frame, the camera ray that shades (up to 16 bounce rays at its hit,
+    // and the shadow rays of 16 L1 samples there plus 2 at each recomputed bounce hit) and `le_rays` more for Le.
     const auto le_rays = static_cast<uint64_t>(RenderSettings{}.le_rays);
+    ASSERT_GT(le_rays, 1u);
     const auto primary = f["rays"]["primary"].get<uint64_t>(), bounce = f["rays"]["bounce"].get<uint64_t>(),
                any_hit = f["rays"]["any_hit"].get<uint64_t>();
     const uint64_t shaded = static_cast<uint64_t>(count) * 24u * 24u;
-    EXPECT_EQ(primary, shaded * le_rays);
+    EXPECT_EQ(primary, shaded * (1 + le_rays));
     EXPECT_GT(bounce, shaded);
     EXPECT_LE(bounce, 16u * shaded);
     EXPECT_GT(any_hit, shaded);

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <string_view>
 
 #include "core/math.h"
@@ -23,6 +24,15 @@ enum class SamplerKind : int { kIndependent = 0, kSobol = 1 };
 /// their arrays on the stack and their loops a whole number of SIMD lanes).
 inline constexpr int kSampleBatch = 16;
 inline constexpr std::array<std::string_view, 2> kSamplerKindNames = {"independent", "sobol"};
+
+/// The index of the first sample of run `run` (a frame's, or a bounce's) when each run draws `count` samples of one
+/// sequence: runs start a power of two apart, so that the samples of any aligned power-of-two block of runs (the
+/// first N frames, and each half of them) lie in one aligned block of the Sobol sequence, in the same places. Each
+/// block is then a net, and the two halves of N frames are distributed alike, as the noise estimate assumes
+/// (render/noise_estimate.h). With a count of 3, runs 3 apart would put frame 1's samples across two blocks.
+constexpr uint64_t first_sample_of_run(uint64_t run, int count) {
+  return run * std::bit_ceil(static_cast<uint64_t>(count > 0 ? count : 1));
+}
 
 class PixelSampler {
  public:

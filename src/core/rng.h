@@ -50,7 +50,7 @@ enum class RngPurpose : uint64_t {
   kIndirect = 3,
   kOcclusion = 4,
   kRecompute = 5,
-  kEmission = 6,     ///< the camera rays that only see Le (RenderSettings::le_rays beyond the first)
+  kEmission = 6,     ///< the camera rays that only see Le (RenderSettings::le_rays, when more than one)
   kCacheFeed = 7,    ///< where a primary hit's L1 goes into the L1 store (the jitter within a cell)
   kCacheLookup = 8,  ///< where L2's bounce hits look up (and feed) the L1 store
 };

@@ -283,7 +283,7 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
     for (int k = 0; k < pending_count; ++k) {
       PendingBounce& b = pending.items[static_cast<size_t>(k)];
       ++result.bounce_hits;
-      const uint64_t first_shadow_sample = b.sample * static_cast<uint64_t>(recompute.rays);
+      const uint64_t first_shadow_sample = first_sample_of_run(b.sample, recompute.rays);
       // L1(q) toward p: from the store's ready cell, from the screen where the camera saw q, otherwise traced anew.
       Vec3 l1_q(0.0f);
       bool reused = false;

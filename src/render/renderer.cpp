@@ -33,20 +33,22 @@ void set_layer(FrameBuffers& frame, Layer layer, size_t pixel, const Vec3& value
   if (!values.empty()) values[pixel] = value;
 }
 
-/// Le by the `settings.le_rays - 1` camera rays beyond the pixel's first (which also carries L1, L2 and AO): the
-/// sum of the emission they see. Emission is cheap to see and its edges are the sharpest in the image, so they get
-/// more camera rays per frame than the shading does.
-Vec3 emission_of_extra_rays(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, int x,
-                            int y, uint64_t pixel, uint64_t frame, uint64_t& rays, uint64_t& primary_rays) {
-  const int extra = settings.le_rays - 1;
+/// Le by `settings.le_rays` camera rays of their own (when there are more than one): the sum of the emission they
+/// see. Emission is cheap to see and its edges are the sharpest in the image, so they get more camera rays per frame
+/// than the shading does. They are one aligned block of one sequence per frame, not the pixel's primary ray plus
+/// le_rays - 1 others: the primary's jitter is a sequence of its own (over frames), and three of each block of four
+/// points are no net: a frame's missing point left Le's error falling as 1 / frames, where whole nets fall faster.
+Vec3 emission_of_le_rays(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, int x, int y,
+                         uint64_t pixel, uint64_t frame, uint64_t& rays, uint64_t& primary_rays) {
+  const int count = settings.le_rays;
   Vec3 sum(0.0f);
-  if (extra <= 0) return sum;
   PixelSampler sampler(settings.sampler, settings.seed, pixel, frame, RngPurpose::kEmission);
   std::array<float, kSampleBatch> u1, u2;
-  for (int batch = 0; batch < extra; batch += kSampleBatch) {
-    const int count = std::min(kSampleBatch, extra - batch);
-    sampler.draw_2d(frame * static_cast<uint64_t>(extra) + static_cast<uint64_t>(batch), count, u1.data(), u2.data());
-    for (size_t k = 0; k < static_cast<size_t>(count); ++k) {
+  for (int batch = 0; batch < count; batch += kSampleBatch) {
+    const int batch_count = std::min(kSampleBatch, count - batch);
+    sampler.draw_2d(first_sample_of_run(frame, count) + static_cast<uint64_t>(batch), batch_count, u1.data(),
+                    u2.data());
+    for (size_t k = 0; k < static_cast<size_t>(batch_count); ++k) {
       const Ray ray = camera_ray(camera, static_cast<float>(x) + u1[k], static_cast<float>(y) + u2[k]);
       ++rays;
       ++primary_rays;
@@ -79,13 +81,13 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
   ++primary_rays;
   const Hit hit = intersect_closest(traced.accel, ray);
   const bool le = settings.pass_enabled(Pass::kLe);
-  const Vec3 extra_emission =
-      le ? emission_of_extra_rays(traced, camera, settings, x, y, pixel, frame, rays, primary_rays) : Vec3(0.0f);
-  const float le_rays = static_cast<float>(std::max(settings.le_rays, 1));
-  if (!hit.found()) {
-    if (le) set_layer(out, Layer::kLe, i, extra_emission / le_rays);
-    return;
+  // One Le ray: the primary's. More: rays of their own (emission_of_le_rays), the primary's emission unused.
+  const bool le_of_own_rays = le && settings.le_rays > 1;
+  if (le_of_own_rays) {
+    const Vec3 emission = emission_of_le_rays(traced, camera, settings, x, y, pixel, frame, rays, primary_rays);
+    set_layer(out, Layer::kLe, i, emission / static_cast<float>(settings.le_rays));
   }
+  if (!hit.found()) return;
 
   const SurfacePoint sp = make_surface_point(traced.scene, ray, hit);
   out.hits[i] = sp;
@@ -93,7 +95,7 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
   out.screen.pixels[i].position = sp.position;
   out.screen.pixels[i].albedo = sp.albedo;
   const Material& material = traced.scene.material_of(hit.triangle);
-  if (le) set_layer(out, Layer::kLe, i, ((sp.front_face ? material.ke : Vec3(0.0f)) + extra_emission) / le_rays);
+  if (le && !le_of_own_rays) set_layer(out, Layer::kLe, i, sp.front_face ? material.ke : Vec3(0.0f));
 
   const bool l2 = settings.pass_enabled(Pass::kL2);
   const bool screen_needs_l1 = l2 && uses_screen(settings.reuse);
@@ -112,8 +114,8 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
       options.camera_light = &head_light;
     }
     Vec3 diffuse(0.0f), arriving(0.0f);
-    const Vec3 l1 = estimate_direct_light(traced, sp, options, sampler, frame * static_cast<uint64_t>(options.rays),
-                                          rays, &diffuse, grid ? &arriving : nullptr);
+    const Vec3 l1 = estimate_direct_light(traced, sp, options, sampler, first_sample_of_run(frame, options.rays), rays,
+                                          &diffuse, grid ? &arriving : nullptr);
     if (grid && options.rays > 0) {
       Pcg32 cell_jitter = make_pixel_rng(settings.seed, pixel, frame, RngPurpose::kCacheFeed);
       const float u1 = cell_jitter.next_float(), u2 = cell_jitter.next_float();
@@ -135,7 +137,7 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
     PixelSampler sampler(settings.sampler, settings.seed, pixel, frame, RngPurpose::kOcclusion);
     set_layer(out, Layer::kAo, i,
               estimate_ambient_occlusion(traced, sp, settings.ao_rays, ambient_occlusion_radius(traced, settings),
-                                         sampler, frame * static_cast<uint64_t>(settings.ao_rays), rays));
+                                         sampler, first_sample_of_run(frame, settings.ao_rays), rays));
   }
 }
 
@@ -157,7 +159,7 @@ void trace_indirect(const TracedScene& traced, const Camera& camera, const Rende
   }
   const IndirectResult r =
       estimate_indirect_light(traced, camera, out.screen, sp, settings, bounce_sampler, recompute_sampler,
-                              frame * static_cast<uint64_t>(settings.l2_rays), rays, store ? &access : nullptr);
+                              first_sample_of_run(frame, settings.l2_rays), rays, store ? &access : nullptr);
   set_layer(out, Layer::kL2, i, r.l2);
   set_layer(out, Layer::kL2Reused, i, r.from_reused);
   set_layer(out, Layer::kL2Recomputed, i, r.from_recomputed);

@@ -30,8 +30,8 @@ std::vector<Row> make_rows() {
       [](auto& s) -> auto& { return s.render.lights; }));
   table.push_back(integer_row(
       "le-rays",
-      "camera rays per pixel per frame that see Le (emission): the first also carries L1, L2 and AO; the others "
-      "only anti-alias the emitters' edges",
+      "camera rays per pixel per frame that see Le (emission), anti-aliasing the emitters' edges: with 1, the "
+      "pixel's ray that also carries L1, L2 and AO; with more, rays of their own",
       E::kRestart, [](auto& s) -> auto& { return s.render.le_rays; }, SettingRange{1, 4096}, SettingRange{1, 64}));
   table.push_back(integer_row(
       "l1-rays", "L1 shadow rays per pixel per frame", E::kRestart, [](auto& s) -> auto& { return s.render.l1_rays; },
