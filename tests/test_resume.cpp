@@ -96,6 +96,17 @@ TEST(ResumeRefused, AStateThatDoesNotMatchTheOptionsIsRefusedWithOneLine) {
   }
   refused("--frames 6 --resume " + shell_quote(cut), "cut short or altered");
   refused("--frames 6 --resume " + shell_quote(altered), "cut short or altered");
+  // A state of the version before (frames sampled otherwise) is refused, not resumed into bytes no render gives.
+  const std::string older = dir + "/older.state";
+  {
+    std::string old_version = read_file(state);
+    ASSERT_EQ(old_version.rfind("LUEUR-STATE 2\n", 0), 0u);
+    old_version[12] = '1';
+    FILE* f = std::fopen(older.c_str(), "wb");
+    std::fwrite(old_version.data(), 1, old_version.size(), f);
+    std::fclose(f);
+  }
+  refused("--frames 6 --resume " + shell_quote(older), "it is a state file of another version");
   // Display settings and the frame count may change: the sums do not depend on them.
   const auto more = run_lueur(base + " --frames 9 --exposure 1" + resume);
   EXPECT_EQ(more.exit_code, 0) << more.output;
