@@ -8,7 +8,7 @@
 namespace lueur {
 
 SceneLoading::SceneLoading(std::string path, const SceneOptions& options, float aspect)
-    : path_(std::move(path)), start_(std::chrono::steady_clock::now()) {
+    : path_(std::move(path)), start_(Clock::now()) {
   thread_ = std::thread([this, options, aspect] {
     std::optional<OpenedScene> result;
     std::string error;
@@ -32,7 +32,7 @@ SceneLoading::SceneLoading(std::string path, const SceneOptions& options, float 
 SceneLoading::~SceneLoading() { thread_.join(); }
 
 std::string SceneLoading::status() const {
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const double seconds = seconds_since(start_);
   char elapsed[32];
   std::snprintf(elapsed, sizeof elapsed, " (%.1f s)", seconds);
   std::lock_guard lock(mutex_);

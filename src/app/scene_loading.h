@@ -2,13 +2,13 @@
 // while a large OBJ is parsed and its BVH built.
 #pragma once
 
-#include <chrono>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <thread>
 
 #include "app/scene_source.h"
+#include "core/stopwatch.h"
 
 namespace lueur {
 
@@ -29,7 +29,7 @@ class SceneLoading {
 
  private:
   std::string path_;
-  std::chrono::steady_clock::time_point start_;
+  Clock::time_point start_;
   mutable std::mutex mutex_;
   std::string stage_ = "starting";
   bool finished_ = false;

@@ -2,8 +2,8 @@
 #include "bench/bench_frame.h"
 
 #include <algorithm>
-#include <chrono>
 
+#include "core/stopwatch.h"
 #include "render/camera.h"
 #include "render/film.h"
 #include "render/renderer.h"
@@ -13,7 +13,6 @@ namespace lueur::bench {
 
 FrameFigures measure_frames(const TracedScene& traced, const BenchScene& scene, int size, ThreadPool& pool,
                             double seconds) {
-  using Clock = std::chrono::steady_clock;
   RenderSettings settings;
   settings.width = settings.height = size;
   const Camera camera = make_camera(scene.view, size, size);
@@ -29,7 +28,7 @@ FrameFigures measure_frames(const TracedScene& traced, const BenchScene& scene, 
     figures.bounce += r.bounce_rays;
     figures.any_hit += r.rays - r.primary_rays - r.bounce_rays;
     ++figures.frames;
-    figures.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    figures.seconds = seconds_since(start);
   }
   const auto total = static_cast<double>(figures.primary + figures.bounce + figures.any_hit);
   figures.renderer_mrays = figures.seconds > 0.0 ? total / figures.seconds * 1e-6 : 0.0;

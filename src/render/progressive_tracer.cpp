@@ -4,12 +4,11 @@
 #include <chrono>
 #include <utility>
 
+#include "core/stopwatch.h"
 #include "render/renderer.h"
 
 namespace lueur {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 /// Reduced-resolution steps after a restart, coarsest first; a step is skipped when the image would be tiny.
 constexpr int kPreviewDivisors[] = {8, 4, 2};
@@ -210,7 +209,7 @@ void ProgressiveTracer::run() {
       const FrameTurn turn(turns_.get());
       const Clock::time_point start = Clock::now();
       result = render_frame(*scene, camera, frame_settings, *target, pool_, &cancel_);
-      seconds = std::chrono::duration<double>(Clock::now() - start).count();
+      seconds = seconds_since(start);
     }
     if (!result.completed) continue;  // cancelled by a restart: the loop picks up the new job
 

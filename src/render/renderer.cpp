@@ -6,11 +6,11 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
+#include "core/stopwatch.h"
 #include "render/camera_light.h"
 #include "render/direct_light.h"
 #include "render/indirect_light.h"
@@ -219,7 +219,6 @@ double film_unit(const TracedScene& traced, const Camera& camera, const RenderSe
 
 FrameResult render_frame(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, Film& film,
                          ThreadPool& pool, const std::atomic<bool>* cancel) {
-  using Clock = std::chrono::steady_clock;
   FrameResult result;
   const int width = film.width, height = film.height;
   const uint64_t frame = film.frames;
@@ -269,7 +268,7 @@ FrameResult render_frame(const TracedScene& traced, const Camera& camera, const 
                      c.cached, store ? &film.l1_cache : nullptr, store ? &grid : nullptr,
                      store ? tile_records(1, x, y) : nullptr);
     });
-    result.l2_seconds = std::chrono::duration<double>(Clock::now() - l2_start).count();
+    result.l2_seconds = seconds_since(l2_start);
   }
   for (const WorkerCounters& c : counters) {
     result.rays += c.rays;
