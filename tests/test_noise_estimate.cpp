@@ -116,20 +116,87 @@ TEST(NoiseEstimate, IndependentFramesOfKnownVarianceGiveThatVarianceOverTheFrame
   EXPECT_LT(sobol.exponent, 1.1);
 }
 
-TEST(NoiseEstimate, TheRunningEstimateIsRemadeAtPowersOfTwoAndCarriedAlongItsExponentBetween) {
+/// The squared half-differences D(N / 2^i) = V(N / 2^(i+1)) - V(N / 2^i) that a variance V gives, for i = 0, 1, 2.
+template <typename Variance>
+std::array<double, 3> differences_of(Variance&& variance, double newest) {
+  std::array<double, 3> d{};
+  for (int i = 0; i < 3; ++i) {
+    const double n = newest / std::exp2(i);
+    d[static_cast<size_t>(i)] = variance(n / 2.0) - variance(n);
+  }
+  return d;
+}
+
+TEST(NoiseEstimate, TheDecayFitRecoversAMixtureOfRatesAndFollowsASlowingFall) {
+  // A mixture of the fitted rates is recovered exactly, now and further on.
+  const auto mixture = [](double n) { return 0.3 / n + 5.0 / (n * n) + 40.0 / (n * n * n); };
+  std::array<double, 3> d = differences_of(mixture, 64.0);
+  VarianceDecay decay = fit_variance_decay(64, d.data(), 3);
+  for (const double n : {64.0, 100.0, 1000.0}) EXPECT_NEAR(decay.at(n) / mixture(n), 1.0, 1e-9) << n;
+  EXPECT_GT(decay.exponent_at(64.0), 1.0);
+  EXPECT_LT(decay.exponent_at(64.0), 3.0);
+
+  // Independent frames: the 1 / n rate alone, exponent 1.
+  const auto independent = [](double n) { return 0.25 / n; };
+  d = differences_of(independent, 32.0);
+  decay = fit_variance_decay(32, d.data(), 3);
+  EXPECT_NEAR(decay.at(32.0) / independent(32.0), 1.0, 1e-9);
+  EXPECT_NEAR(decay.exponent_at(32.0), 1.0, 1e-9);
+
+  // A pure power law between the rates (Owen-scrambled nets on a discontinuous 2D integrand fall as n^-1.5, say):
+  // the mixture that matches its differences leans on 1 / n, which falls slower than the law beyond what they saw,
+  // so it overstates the variance, by 20-40% for exponents between 1.2 and 2.5, never understates it.
+  for (const double exponent : {1.2, 1.5, 1.8, 2.5}) {
+    const auto power = [&](double n) { return std::pow(n, -exponent); };
+    d = differences_of(power, 128.0);
+    decay = fit_variance_decay(128, d.data(), 3);
+    EXPECT_GT(decay.at(128.0) / power(128.0), 1.0) << exponent;
+    EXPECT_LT(decay.at(128.0) / power(128.0), 1.4) << exponent;
+  }
+
+  // A fall that slows toward 1 / n (the Sobol sampler's, where a fast-converging part gives way to the padded
+  // dimensions' interaction): one exponent fitted over the last halvings, (D(N/2) / D(N)) = 2^p, underestimates the
+  // variance now by half; the mixture does not.
+  const auto slowing = [](double n) { return 0.5 / n + 30.0 / (n * n * n); };
+  d = differences_of(slowing, 16.0);
+  decay = fit_variance_decay(16, d.data(), 3);
+  EXPECT_NEAR(decay.at(16.0) / slowing(16.0), 1.0, 1e-6);
+  const double p = std::log2(d[1] / d[0]);
+  EXPECT_LT(d[0] / (std::exp2(p) - 1.0) / slowing(16.0), 0.5);
+
+  // Only the newest difference: the cautious 1 / n. No difference at all: no noise.
+  d = {1e-3, 0.0, 0.0};
+  decay = fit_variance_decay(8, d.data(), 1);
+  EXPECT_DOUBLE_EQ(decay.at(8.0), 1e-3);
+  EXPECT_DOUBLE_EQ(decay.at(16.0), 0.5e-3);
+  d = {0.0, 0.0, 0.0};
+  EXPECT_EQ(fit_variance_decay(8, d.data(), 3).at(8.0), 0.0);
+}
+
+TEST(NoiseEstimate, TheRunningEstimateIsRemadeAtPowersOfTwoAndCarriedAlongItsDecayBetween) {
   Film film;
   RenderSettings settings;
   settings.width = settings.height = 32;
   settings.enabled = {true, true, false, false};
   film.reset(settings);
   Pcg32 rng(3, 9);
-  RunningNoiseEstimate running;
+  RunningNoiseEstimate running, running_sobol;
   std::array<float, kPassCount> weights = kReportWeights;
   for (int f = 1; f <= 40; ++f) {
     add_test_frame(film, {Layer::kLe, Layer::kL1},
                    [&](Layer l) { return l == Layer::kLe ? 1.0f + rng.next_float() : 2.0f * rng.next_float(); });
     if (f == 20) weights[0] = 0.25f;  // a new weight remakes it at once
     const FilmNoise carried = running.update(film, settings.enabled, weights, SamplerKind::kIndependent);
+    // The Sobol sampler's fitted decay carries its estimate the same way.
+    const FilmNoise carried_sobol = running_sobol.update(film, settings.enabled, weights, SamplerKind::kSobol);
+    const NoiseEstimate full_sobol = estimate_image_noise(film, settings.enabled, weights, SamplerKind::kSobol);
+    ASSERT_EQ(carried_sobol.image.known, full_sobol.known) << f;
+    if (full_sobol.known) {
+      if ((f & (f - 1)) == 0 || f == 20)
+        EXPECT_EQ(carried_sobol.image.rel_mse, full_sobol.rel_mse) << f;
+      else
+        EXPECT_NEAR(carried_sobol.image.rel_mse / full_sobol.rel_mse, 1.0, 0.05) << f;
+    }
     const NoiseEstimate full = estimate_image_noise(film, settings.enabled, weights, SamplerKind::kIndependent);
     ASSERT_EQ(carried.image.known, full.known) << f;
     if (!full.known) continue;
@@ -142,29 +209,43 @@ TEST(NoiseEstimate, TheRunningEstimateIsRemadeAtPowersOfTwoAndCarriedAlongItsExp
   }
 }
 
-/// Checks the estimate of every enabled pass but `unchecked` after 16, 64 and 256 frames against the true relMSE
-/// against `reference(pass)`: within a factor of 1.5 either way. Both below `floor` (a relative error of 0.03%: the
-/// closed sphere's Le, exact but for rays that slip between triangles) counts as agreement. Every pass's figures are
-/// printed.
+/// Checks the estimate of every enabled pass but `unchecked`, and of the image those passes combine to with the
+/// report's weights, after 16, 64 and 256 frames against the true relMSE against `reference(pass)` (and their weighted
+/// sum): within a factor of 1.5 either way. Both below `floor` (a relative error of 0.03%: the closed sphere's Le,
+/// exact but for rays that slip between triangles) counts as agreement. Every figure is printed.
 void expect_honest(const TracedScene& traced, const CameraSpec& view, const RenderSettings& settings,
                    const std::function<Image(Pass)>& reference, const std::string& name,
                    std::optional<Pass> unchecked = std::nullopt, double floor = 1e-7) {
+  std::array<bool, kPassCount> image_passes = settings.enabled;
+  if (unchecked) image_passes[static_cast<size_t>(*unchecked)] = false;
+  Image image_reference{settings.width, settings.height,
+                        std::vector<float>(3 * static_cast<size_t>(settings.width * settings.height), 0.0f)};
+  for (int p = 0; p < kPassCount; ++p) {
+    if (!image_passes[static_cast<size_t>(p)]) continue;
+    const Image pass = reference(static_cast<Pass>(p));
+    for (size_t j = 0; j < pass.rgb.size(); ++j)
+      image_reference.rgb[j] += kReportWeights[static_cast<size_t>(p)] * pass.rgb[j];
+  }
   render(traced, view, settings, 256, [&](const Film& film) {
     if (film.frames != 16 && film.frames != 64 && film.frames != 256) return;
+    const auto check = [&](const std::string& what_of, const NoiseEstimate& e, double truth, bool checked) {
+      ASSERT_TRUE(e.known);
+      const std::string what = name + ", " + what_of + " after " + std::to_string(film.frames) + " frames: estimated " +
+                               std::to_string(e.rel_mse) + ", true " + std::to_string(truth) + ", exponent " +
+                               std::to_string(e.exponent);
+      std::printf("%s\n", what.c_str());
+      if ((truth < floor && e.rel_mse < floor) || !checked) return;
+      EXPECT_GT(e.rel_mse, truth / 1.5) << what;
+      EXPECT_LT(e.rel_mse, truth * 1.5) << what;
+    };
     for (int p = 0; p < kPassCount; ++p) {
       const Pass pass = static_cast<Pass>(p);
       if (!settings.pass_enabled(pass)) continue;
-      const double truth = rel_mse(pass_average(film, pass), reference(pass));
-      const NoiseEstimate e = estimate_pass_noise(film, pass, settings.sampler);
-      ASSERT_TRUE(e.known);
-      const std::string what = name + ", " + std::string(kPassNames[static_cast<size_t>(p)]) + " after " +
-                               std::to_string(film.frames) + " frames: estimated " + std::to_string(e.rel_mse) +
-                               ", true " + std::to_string(truth) + ", exponent " + std::to_string(e.exponent);
-      std::printf("%s\n", what.c_str());
-      if ((truth < floor && e.rel_mse < floor) || pass == unchecked) continue;
-      EXPECT_GT(e.rel_mse, truth / 1.5) << what;
-      EXPECT_LT(e.rel_mse, truth * 1.5) << what;
+      check(std::string(kPassNames[static_cast<size_t>(p)]), estimate_pass_noise(film, pass, settings.sampler),
+            rel_mse(pass_average(film, pass), reference(pass)), pass != unchecked);
     }
+    check("the image", estimate_image_noise(film, image_passes, kReportWeights, settings.sampler),
+          rel_mse(combine_passes(film, image_passes, kReportWeights), image_reference), true);
   });
 }
 
@@ -208,14 +289,18 @@ TEST(NoiseEstimate, IsWithinOneAndAHalfOfTheTrueErrorOnTheDefaultScene) {
     long_run.seed = 99;
     const Film reference = render(*traced, default_scene_camera(), long_run, 2048);
     // Le is printed, not checked: NOT MET. Its error lives on the few pixels that cut a light's edge (the wall
-    // lamp is small and bright), where a pixel sees the light in a few percent of its camera rays: rare events,
-    // whose realised squared error and half-differences agree only on average. At 48 x 48 the estimate was 0.33x
-    // to 5.1x the true error. Averaged over seeds (Le alone, 128 x 128) it is 0.7x to 1.5x; single renders scatter
-    // because a hit in a pixel the light barely covers weighs as much as the rest of the image, and the current
-    // average, not the unknown reference, stands in that pixel's denominator (BENCHMARKS.md).
-    expect_honest(
-        *traced, default_scene_camera(), settings, [&](Pass pass) { return pass_average(reference, pass); },
-        std::string(kSamplerKindNames[static_cast<size_t>(sampler)]), Pass::kLe);
+    // lamp is small and bright), where a pixel sees the light in a few percent of its camera rays. The true error
+    // itself is a lottery there: over 16 seeds at 48 x 48 it spread from 0.25x to 2.8x its mean after 16 frames,
+    // and at 512 x 512 two renders in twelve had 10-30x the others' from one camera ray that hit the lamp. No
+    // estimate of the expected error follows one render's draw (BENCHMARKS.md).
+    // Sobol frames over three seeds: a fit of how fast the variance falls could pass one seed by chance.
+    for (const uint64_t seed :
+         sampler == SamplerKind::kSobol ? std::vector<uint64_t>{0, 1, 2} : std::vector<uint64_t>{0}) {
+      settings.seed = seed;
+      expect_honest(
+          *traced, default_scene_camera(), settings, [&](Pass pass) { return pass_average(reference, pass); },
+          std::string(kSamplerKindNames[static_cast<size_t>(sampler)]) + " seed " + std::to_string(seed), Pass::kLe);
+    }
   }
 }
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -14,8 +15,9 @@ using PassWeights = std::array<float, kPassCount>;
 /// The relMSE's regulariser: errors on black pixels count as errors on a value of 0.1.
 constexpr double kDenominatorFloor = 0.01;
 
-/// The fitted exponent stays between independent sampling's 1 and a smooth 2D integrand's 3 under Owen scrambling.
-constexpr double kMinExponent = 1.0, kMaxExponent = 3.0;
+/// The rates the decay mixes: independent sampling's 1 / n, and faster ones up to a smooth 2D integrand's 1 / n^3
+/// under Owen scrambling.
+constexpr std::array<double, 3> kRates = {1.0, 2.0, 3.0};
 
 /// What the estimate reads of the film: its pass sums now and at the snapshots, with their frame counts.
 struct Snapshots {
@@ -76,8 +78,8 @@ double inverse_denominator(double now) { return 1.0 / (now * now + kDenominatorF
 /// (m_N - m_{N/2})^2, (m_{N/2} - m_{N/4})^2 and (m_{N/4} - m_{N/8})^2.
 struct Differences {
   double newest = 0.0, older = 0.0, oldest = 0.0;
-  void add(const double* at, int levels) {
-    const double inverse = inverse_denominator(at[0]);
+  /// Adds one pixel channel's squared differences, each times `inverse` (one over its denominator).
+  void add(const double* at, int levels, double inverse) {
     const double d = at[1] - at[2];
     newest += d * d * inverse;
     if (levels > 2) {
@@ -89,47 +91,62 @@ struct Differences {
       oldest += e * e * inverse;
     }
   }
+  void add(const double* at, int levels) { add(at, levels, inverse_denominator(at[0])); }
 };
 
-/// The variance's decay exponent and the factor that turns a newest squared difference into V(F): V(F) =
-/// (m_N - m_{N/2})^2 / (2^p - 1) x (N / F)^p.
-struct Decay {
-  double exponent = 1.0, factor = 1.0;
+/// What the weighted image's estimate reads: its own differences, and each pass's in the image's units (the pass's
+/// weight squared over the image's denominator), whose sum is the image's but for the passes' correlation.
+struct ImageDifferences {
+  Differences image;
+  std::array<Differences, kPassCount> passes;
+  void add(const Snapshots& s, const double (&passes_at)[kPassCount][1 + kNoiseCheckpoints],
+           const PassWeights& weights) {
+    double at[1 + kNoiseCheckpoints];
+    s.image_averages(passes_at, weights, at);
+    const double inverse = inverse_denominator(at[0]);
+    image.add(at, s.levels, inverse);
+    for (size_t p = 0; p < kPassCount; ++p) {
+      if (weights[p] == 0.0f || !s.sums[p][0]) continue;
+      const double w = static_cast<double>(weights[p]);
+      passes[p].add(passes_at[p], s.levels, w * w * inverse);
+    }
+  }
 };
-Decay decay_of(double exponent, const Film& film) {
-  const double newest = static_cast<double>(film.checkpoints[0].frames), now = static_cast<double>(film.frames);
-  return {exponent, std::pow(newest / now, exponent) / (std::exp2(exponent) - 1.0)};
+
+/// The relMSE-scaled squared half-differences D(N), D(N/2), D(N/4) of a weighted image.
+std::array<double, 3> scaled_differences(const Differences& sums, const Film& film) {
+  const double values = 3.0 * static_cast<double>(film.pixel_count());
+  return {sums.newest / values, sums.older / values, sums.oldest / values};
 }
 
 NoiseEstimate estimate_from(const Differences& sums, const Film& film, SamplerKind sampler) {
-  // The exponent measured over the last halving and, where there are four snapshots, over the last two; either
-  // alone is noisy enough to move the estimate by a third or more. The smaller one is kept: it gives the larger
-  // error, so that a render stopped at a target noise errs on the side of being quieter than it says.
-  double exponent = 1.0;
-  if (sampler != SamplerKind::kIndependent && sums.newest > 0.0 && sums.older > 0.0) {
-    exponent = std::log2(sums.older / sums.newest);
-    if (sums.oldest > 0.0) exponent = std::min(exponent, 0.5 * std::log2(sums.oldest / sums.newest));
-    exponent = std::clamp(exponent, kMinExponent, kMaxExponent);
-  }
-  // Independent frames: (m_{N/2} - m_{N/4})^2 estimates V(N/2) = 2 V(N) and (m_{N/4} - m_{N/8})^2 estimates 4 V(N),
-  // each uncorrelated with the newest difference, so the mean of the three, so scaled, is the same estimate with
-  // about a third of its variance. (Sobol frames fit their exponent from those differences: nothing is left to
-  // average.)
-  double differences = sums.newest;
+  const uint64_t newest = film.checkpoints[0].frames;
+  std::array<double, 3> d = scaled_differences(sums, film);
+  NoiseEstimate e;
+  e.known = true;
   if (sampler == SamplerKind::kIndependent) {
+    // V(n) = V(1) / n: D(N) estimates V(N), D(N/2) = V(N/2) = 2 V(N) and D(N/4) = 4 V(N), each uncorrelated with the
+    // others, so the mean of the three, so scaled, is the same estimate with about a third of its variance.
+    double variance = d[0];
     int levels = 1;
     if (film.checkpoints[2].frames > 0) {
-      differences += 0.5 * sums.older;
+      variance += 0.5 * d[1];
       ++levels;
     }
     if (film.checkpoints[3].frames > 0) {
-      differences += 0.25 * sums.oldest;
+      variance += 0.25 * d[2];
       ++levels;
     }
-    differences /= levels;
+    e.decay.frames = static_cast<double>(newest);
+    e.decay.weights = {variance / levels, 0.0, 0.0};
+  } else {
+    const int levels = 1 + (film.checkpoints[2].frames > 0 ? 1 : 0) + (film.checkpoints[3].frames > 0 ? 1 : 0);
+    e.decay = fit_variance_decay(newest, d.data(), levels);
   }
-  const double values = 3.0 * static_cast<double>(film.pixel_count());
-  return {true, differences / values * decay_of(exponent, film).factor, exponent};
+  const double now = static_cast<double>(film.frames);
+  e.rel_mse = e.decay.at(now);
+  e.exponent = e.decay.exponent_at(now);
+  return e;
 }
 
 PassWeights enabled_weights(const std::array<bool, kPassCount>& enabled, const PassWeights& weights) {
@@ -138,7 +155,143 @@ PassWeights enabled_weights(const std::array<bool, kPassCount>& enabled, const P
   return w;
 }
 
+/// The weighted image's differences, summed over its pixel channels.
+ImageDifferences image_differences(const Film& film, const Snapshots& s, const PassWeights& image_weights) {
+  ImageDifferences sums;
+  double passes_at[kPassCount][1 + kNoiseCheckpoints];
+  for (size_t j = 0; j < 3 * film.pixel_count(); ++j) {
+    s.pass_averages(j, passes_at);
+    sums.add(s, passes_at, image_weights);
+  }
+  return sums;
+}
+
+/// The weighted image's estimate. Independent frames: from its own differences. Sobol frames: each pass's decay is
+/// fitted on its differences in the image's units, the decays are summed, and the sum is scaled to give the image's
+/// own newest difference (which holds the passes' correlation). The passes fall at different rates (Le steeply at
+/// first, L1 and L2 slowly), and one fit of their sum, steered by the steep one in the older differences,
+/// understated the image's error after 16 frames of the default settings by a third.
+NoiseEstimate image_estimate_from(const ImageDifferences& sums, const Film& film, SamplerKind sampler) {
+  if (sampler == SamplerKind::kIndependent) return estimate_from(sums.image, film, sampler);
+  VarianceDecay total;
+  total.frames = static_cast<double>(film.checkpoints[0].frames);
+  for (const Differences& pass : sums.passes) {
+    if (!(pass.newest > 0.0)) continue;
+    const VarianceDecay decay = estimate_from(pass, film, sampler).decay;
+    for (size_t k = 0; k < total.weights.size(); ++k) total.weights[k] += decay.weights[k];
+  }
+  const double fitted_newest = total.at(0.5 * total.frames) - total.at(total.frames);
+  const double observed_newest = scaled_differences(sums.image, film)[0];
+  if (!(fitted_newest > 0.0)) return estimate_from(sums.image, film, sampler);
+  for (double& w : total.weights) w *= observed_newest / fitted_newest;
+  NoiseEstimate e;
+  e.known = true;
+  e.decay = total;
+  e.rel_mse = total.at(static_cast<double>(film.frames));
+  e.exponent = total.exponent_at(static_cast<double>(film.frames));
+  return e;
+}
+
+/// The least-squares problem of fitting the decay's weights: with n measured in units of the newest frame count,
+/// level i sits at n = 2^-i, where the rate n^-k gives the difference (2^k - 1) 2^(i k). Each row is divided by its
+/// observed difference (relative residuals) and weighed by 2^-i, so that the newest difference counts most.
+struct DecayRows {
+  double rows[3][3] = {}, targets[3] = {};
+  int count = 0;
+  double residual(const std::array<double, 3>& weights) const {
+    double sum = 0.0;
+    for (int r = 0; r < count; ++r) {
+      double fitted = 0.0;
+      for (size_t k = 0; k < 3; ++k) fitted += rows[r][k] * weights[k];
+      sum += (fitted - targets[r]) * (fitted - targets[r]);
+    }
+    return sum;
+  }
+};
+
+DecayRows decay_rows(const double* differences, int levels) {
+  DecayRows rows;
+  for (int i = 0; i < levels; ++i) {
+    if (!(differences[i] > 0.0)) continue;  // an unseen level says nothing
+    const double weight = std::exp2(-i);
+    for (size_t k = 0; k < kRates.size(); ++k)
+      rows.rows[rows.count][k] = (std::exp2(kRates[k]) - 1.0) * std::exp2(i * kRates[k]) * weight / differences[i];
+    rows.targets[rows.count] = weight;
+    ++rows.count;
+  }
+  return rows;
+}
+
+/// The least-squares weights of the rates in `subset` (bit k: rate k + 1), the others 0; none unless there are at
+/// least as many rows as rates and every weight comes out positive. Normal equations, solved by Gauss-Jordan
+/// elimination with partial pivoting.
+std::optional<std::array<double, 3>> positive_least_squares(const DecayRows& rows, unsigned subset) {
+  int columns[3], size = 0;
+  for (int k = 0; k < 3; ++k)
+    if (subset & (1u << k)) columns[size++] = k;
+  if (size > rows.count) return std::nullopt;
+  double a[3][4] = {};
+  for (int r = 0; r < size; ++r) {
+    for (int row = 0; row < rows.count; ++row) {
+      for (int c = 0; c < size; ++c) a[r][c] += rows.rows[row][columns[r]] * rows.rows[row][columns[c]];
+      a[r][size] += rows.rows[row][columns[r]] * rows.targets[row];
+    }
+  }
+  for (int c = 0; c < size; ++c) {
+    int pivot = c;
+    for (int r = c + 1; r < size; ++r)
+      if (std::fabs(a[r][c]) > std::fabs(a[pivot][c])) pivot = r;
+    if (!(std::fabs(a[pivot][c]) > 1e-300)) return std::nullopt;
+    std::swap(a[c], a[pivot]);
+    for (int r = 0; r < size; ++r) {
+      if (r == c) continue;
+      const double f = a[r][c] / a[c][c];
+      for (int k = c; k <= size; ++k) a[r][k] -= f * a[c][k];
+    }
+  }
+  std::array<double, 3> weights{};
+  for (int c = 0; c < size; ++c) {
+    const double w = a[c][size] / a[c][c];
+    if (!(w > 0.0)) return std::nullopt;
+    weights[static_cast<size_t>(columns[c])] = w;
+  }
+  return weights;
+}
+
 }  // namespace
+
+double VarianceDecay::at(double n) const {
+  const double x = frames / n;
+  return weights[0] * x + weights[1] * x * x + weights[2] * x * x * x;
+}
+
+double VarianceDecay::exponent_at(double n) const {
+  const double x = frames / n;
+  const double terms[3] = {weights[0] * x, weights[1] * x * x, weights[2] * x * x * x};
+  const double sum = terms[0] + terms[1] + terms[2];
+  return sum > 0.0 ? (terms[0] + 2.0 * terms[1] + 3.0 * terms[2]) / sum : 1.0;
+}
+
+VarianceDecay fit_variance_decay(uint64_t newest_frames, const double* differences, int count) {
+  VarianceDecay decay;
+  decay.frames = static_cast<double>(newest_frames);
+  if (count < 1 || !(differences[0] > 0.0)) return decay;  // no noise seen: none estimated
+  const DecayRows rows = decay_rows(differences, std::min(count, 3));
+  // Every subset of the rates, smallest first, so that among equally good fits the slowest (most cautious) wins;
+  // a subset whose least-squares weights are not all positive is no candidate.
+  double best_residual = std::numeric_limits<double>::infinity();
+  for (const unsigned subset : {1u, 2u, 4u, 3u, 5u, 6u, 7u}) {  // bit k: rate k + 1
+    const std::optional<std::array<double, 3>> weights = positive_least_squares(rows, subset);
+    if (!weights) continue;
+    const double residual = rows.residual(*weights);
+    // A relative margin, so that an exact fit by more rates does not beat an exact fit by fewer on rounding.
+    if (residual < best_residual * (1.0 - 1e-9) - 1e-24) {
+      best_residual = residual;
+      decay.weights = *weights;
+    }
+  }
+  return decay;
+}
 
 uint64_t frames_before_noise_estimate(SamplerKind sampler) {
   // Independent frames need one difference (N = 2); the Sobol sampler's exponent needs two (N = 4).
@@ -153,20 +306,18 @@ FilmNoise estimate_film_noise(const Film& film, const std::array<bool, kPassCoun
   // One sweep over the film for every pass and the combination: each value is read once.
   const PassWeights image_weights = enabled_weights(enabled, weights);
   std::array<Differences, kPassCount> passes;
-  Differences image;
+  ImageDifferences image;
   const size_t values = 3 * film.pixel_count();
   double passes_at[kPassCount][1 + kNoiseCheckpoints];
-  double at[1 + kNoiseCheckpoints];
   for (size_t j = 0; j < values; ++j) {
     s->pass_averages(j, passes_at);
     for (size_t p = 0; p < kPassCount; ++p)
       if (!film.sums[p].empty()) passes[p].add(passes_at[p], s->levels);
-    s->image_averages(passes_at, image_weights, at);
-    image.add(at, s->levels);
+    image.add(*s, passes_at, image_weights);
   }
   for (size_t p = 0; p < kPassCount; ++p)
     if (!film.sums[p].empty()) noise.passes[p] = estimate_from(passes[p], film, sampler);
-  noise.image = estimate_from(image, film, sampler);
+  noise.image = image_estimate_from(image, film, sampler);
   return noise;
 }
 
@@ -179,16 +330,7 @@ NoiseEstimate estimate_image_noise(const Film& film, const std::array<bool, kPas
                                    const std::array<float, kPassCount>& weights, SamplerKind sampler) {
   const std::optional<Snapshots> s = snapshots_of(film, sampler);
   if (!s) return {};
-  const PassWeights image_weights = enabled_weights(enabled, weights);
-  Differences image;
-  double passes_at[kPassCount][1 + kNoiseCheckpoints];
-  double at[1 + kNoiseCheckpoints];
-  for (size_t j = 0; j < 3 * film.pixel_count(); ++j) {
-    s->pass_averages(j, passes_at);
-    s->image_averages(passes_at, image_weights, at);
-    image.add(at, s->levels);
-  }
-  return estimate_from(image, film, sampler);
+  return image_estimate_from(image_differences(film, *s, enabled_weights(enabled, weights)), film, sampler);
 }
 
 const FilmNoise& RunningNoiseEstimate::update(const Film& film, const std::array<bool, kPassCount>& enabled,
@@ -206,8 +348,9 @@ const FilmNoise& RunningNoiseEstimate::update(const Film& film, const std::array
   }
   noise_ = made_noise_;
   const auto carry = [&](NoiseEstimate& e) {
-    if (e.known && film.frames > made_at_)
-      e.rel_mse *= std::pow(static_cast<double>(made_at_) / static_cast<double>(film.frames), e.exponent);
+    if (!e.known || film.frames <= made_at_) return;
+    e.rel_mse = e.decay.at(static_cast<double>(film.frames));
+    e.exponent = e.decay.exponent_at(static_cast<double>(film.frames));
   };
   for (NoiseEstimate& e : noise_.passes) carry(e);
   carry(noise_.image);
@@ -216,16 +359,18 @@ const FilmNoise& RunningNoiseEstimate::update(const Film& film, const std::array
 
 Image pixel_noise_map(const Film& film, const std::array<bool, kPassCount>& enabled,
                       const std::array<float, kPassCount>& weights, SamplerKind sampler) {
-  const NoiseEstimate image = estimate_image_noise(film, enabled, weights, sampler);
-  if (!image.known) return {};
   const std::optional<Snapshots> s = snapshots_of(film, sampler);
-  const double factor = decay_of(image.exponent, film).factor;
+  if (!s) return {};
   const PassWeights image_weights = enabled_weights(enabled, weights);
-  // Each pixel's relMSE from both differences where the older one is there: (m_{N/2} - m_{N/4})^2 estimates
-  // 2^p (2^p - 1) V(N), so scaled by 2^-p it is a second estimate of what the newest difference estimates.
+  const ImageDifferences image_sums = image_differences(film, *s, image_weights);
+  const NoiseEstimate image = image_estimate_from(image_sums, film, sampler);
+  const std::array<double, 3> d = scaled_differences(image_sums.image, film);
+  // A pixel's squared newest difference times what turns the image's into its relMSE now. Where the older difference
+  // is there, it is a second estimate of the same, scaled by the image's ratio of the two.
+  const double factor = d[0] > 0.0 ? image.rel_mse / d[0] : 0.0;
+  const double older_scale = s->levels > 2 && d[1] > 0.0 ? d[0] / d[1] : 0.0;
   const int width = film.width, height = film.height;
   std::vector<double> per_pixel(film.pixel_count(), 0.0);
-  const double older_scale = std::exp2(-image.exponent);
   double passes_at[kPassCount][1 + kNoiseCheckpoints];
   double at[1 + kNoiseCheckpoints];
   for (size_t i = 0; i < per_pixel.size(); ++i) {
@@ -233,11 +378,11 @@ Image pixel_noise_map(const Film& film, const std::array<bool, kPassCount>& enab
     for (size_t c = 0; c < 3; ++c) {
       s->pass_averages(3 * i + c, passes_at);
       s->image_averages(passes_at, image_weights, at);
-      const double d = at[1] - at[2];
-      double squared = d * d;
-      if (s->levels > 2) {
-        const double e = at[2] - at[3];
-        squared = 0.5 * (squared + e * e * older_scale);
+      const double e = at[1] - at[2];
+      double squared = e * e;
+      if (older_scale > 0.0) {
+        const double older = at[2] - at[3];
+        squared = 0.5 * (squared + older * older * older_scale);
       }
       sum += squared * inverse_denominator(at[0]);
     }
