@@ -54,9 +54,8 @@ TEST_P(ClosedBox, DirectLightIsRhoTimesLeAtEveryPixel) {
   DirectLightOptions options;
   options.strategy = GetParam();
   options.blinn_k = 1.0f;
-  // 12 x 12 images of the floor and of two walls, seen from the centre. Pixels stay at least 0.4 from the box's
-  // edges: near an edge the estimator's variance grows without bound (the adjacent wall is sampled at d -> 0) and
-  // 5 standard errors of a finite sample would no longer bound the error.
+  // 12 x 12 images of the floor and of two walls, seen from the centre (the edges and corners have a test of their
+  // own, below).
   const Vec3 expected = rho * le;
   const CameraSpec views[] = {{Vec3(0.0f), Vec3(0, -1, 0), Vec3(0, 0, -1), 60.0f},
                               {Vec3(0.0f), Vec3(-1, 0, 0), Vec3(0, 1, 0), 60.0f},
@@ -74,6 +73,30 @@ TEST_P(ClosedBox, DirectLightIsRhoTimesLeAtEveryPixel) {
         expect_within_error(e, expected, "pixel " + std::to_string(x) + "," + std::to_string(y));
       }
   }
+}
+
+TEST_P(ClosedBox, DirectLightStaysRhoTimesLeWithABoundedErrorUpToTheEdgesAndCorners) {
+  // Near an edge the adjacent wall lies close to the point's plane: area sampling's weight, area cos_l / d^2, grows
+  // as 1 / distance^2 there (infinite variance as the point nears the edge), so those emitters are sampled by
+  // solid angle. The estimate must stay rho Le, and its standard error stay small, at 0.1, 0.01 and 0.001 of the
+  // box's half-width from an edge and from a corner.
+  const Vec3 rho(0.5f, 0.7f, 0.3f), le(2.0f, 1.0f, 4.0f);
+  const auto traced = prepare_scene(test::make_closed_emitting_box(1.0f, rho, le));
+  DirectLightOptions options;
+  options.strategy = GetParam();
+  options.blinn_k = 1.0f;
+  for (const float gap : {0.1f, 0.01f, 0.001f})
+    for (const bool corner : {false, true}) {
+      const Vec3 target(1.0f - gap, -1.0f, corner ? 1.0f - gap : 0.3f);  // on the floor, by the wall x = 1
+      const Ray ray{Vec3(0.0f), target};
+      const Hit hit = intersect_closest(traced->accel, ray);
+      ASSERT_TRUE(hit.found());
+      const SurfacePoint sp = make_surface_point(traced->scene, ray, hit);
+      const Estimate e = estimate_with_error(*traced, sp, options, 4000, 7);
+      const std::string where = std::string(corner ? "corner" : "edge") + ", gap " + std::to_string(gap);
+      expect_within_error(e, rho * le, where);
+      for (int c = 0; c < 3; ++c) EXPECT_LT(e.standard_error[c], 0.05f * rho[c] * le[c]) << where << " channel " << c;
+    }
 }
 
 TEST_P(ClosedBox, RenderedFilmAveragesToRhoLe) {

@@ -2,11 +2,13 @@
 // report's Algorithm 1 against the cumulative table.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <random>
 
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "core/spherical_triangle.h"
 #include "render/light_sampler.h"
 #include "scene/default_scene.h"
 #include "test_support.h"
@@ -77,6 +79,79 @@ TEST(Sampling, UniformTriangleMatchesItsPdf) {
       ++cells;
     }
   EXPECT_FALSE(test::chi_square_rejects(chi2, cells - 1)) << chi2;
+}
+
+TEST(Sampling, SphericalTriangleSolidAngles) {
+  // An octant's triangle seen from the origin: an eighth of the sphere.
+  EXPECT_NEAR(make_spherical_triangle(Vec3(0.0f), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)).solid_angle, 0.5 * kPi,
+              1e-6);
+  // A small triangle far away: its area times cos / d^2.
+  const SphericalTriangle far =
+      make_spherical_triangle(Vec3(0.0f), Vec3(0, 0, 100), Vec3(0.1f, 0, 100), Vec3(0, 0.1f, 100));
+  EXPECT_NEAR(far.solid_angle / (0.005 / 1e4), 1.0, 1e-3);
+  // Seen edge-on, or from a corner: nothing to sample.
+  EXPECT_EQ(make_spherical_triangle(Vec3(5, 0, 0), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)).solid_angle, 0.0);
+  EXPECT_EQ(make_spherical_triangle(Vec3(1, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)).solid_angle, 0.0);
+}
+
+/// Samples `count` directions over the triangle as seen from `from` and checks, by chi-square, that they fall on the
+/// 32 triangles of a 4 x 4 barycentric grid of it in proportion to those triangles' solid angles; every direction
+/// must hit the triangle.
+void expect_uniform_in_solid_angle(const Vec3& from, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+  constexpr int kGrid = 4, kSamples = 200000;
+  const SphericalTriangle whole = make_spherical_triangle(from, p0, p1, p2);
+  ASSERT_GT(whole.solid_angle, 0.0);
+  const auto corner = [&](int i, int j) {
+    return p0 + (static_cast<float>(i) / kGrid) * (p1 - p0) + (static_cast<float>(j) / kGrid) * (p2 - p0);
+  };
+  std::vector<int> counts(2 * kGrid * kGrid, 0);
+  const glm::dvec3 e1 = glm::dvec3(p1 - p0), e2 = glm::dvec3(p2 - p0), origin(from);
+  Pcg32 rng(3, 5);
+  for (int n = 0; n < kSamples; ++n) {
+    const glm::dvec3 d = sample_spherical_triangle(whole, rng.next_float(), rng.next_float());
+    ASSERT_NEAR(glm::length(d), 1.0, 1e-9);
+    // Where the direction meets the triangle's plane, in barycentrics (Cramer's rule).
+    const glm::dvec3 pvec = glm::cross(d, e2);
+    const double det = glm::dot(e1, pvec);
+    const glm::dvec3 tvec = origin - glm::dvec3(p0);
+    const double b1 = glm::dot(tvec, pvec) / det;
+    const glm::dvec3 qvec = glm::cross(tvec, e1);
+    const double b2 = glm::dot(d, qvec) / det, t = glm::dot(e2, qvec) / det;
+    ASSERT_GT(t, 0.0);
+    ASSERT_GE(b1, -1e-6);
+    ASSERT_GE(b2, -1e-6);
+    ASSERT_LE(b1 + b2, 1.0 + 1e-6);
+    const double gx = std::clamp(b1 * kGrid, 0.0, kGrid - 1e-9), gy = std::clamp(b2 * kGrid, 0.0, kGrid - 1e-9);
+    const int cx = static_cast<int>(gx), cy = static_cast<int>(gy);
+    const bool upper = (gx - cx) + (gy - cy) >= 1.0;
+    ++counts[static_cast<size_t>(2 * (cy * kGrid + cx) + (upper ? 1 : 0))];
+  }
+  double chi2 = 0.0;
+  int cells = 0;
+  for (int cy = 0; cy < kGrid; ++cy)
+    for (int cx = 0; cx < kGrid; ++cx)
+      for (int upper = 0; upper < 2; ++upper) {
+        const int count = counts[static_cast<size_t>(2 * (cy * kGrid + cx) + upper)];
+        if (cx + cy + upper >= kGrid) {  // outside the triangle
+          EXPECT_LE(count, 2) << cx << "," << cy << "," << upper;
+          continue;
+        }
+        const SphericalTriangle part =
+            upper ? make_spherical_triangle(from, corner(cx + 1, cy), corner(cx + 1, cy + 1), corner(cx, cy + 1))
+                  : make_spherical_triangle(from, corner(cx, cy), corner(cx + 1, cy), corner(cx, cy + 1));
+        const double expected = kSamples * part.solid_angle / whole.solid_angle;
+        chi2 += (count - expected) * (count - expected) / expected;
+        ++cells;
+      }
+  EXPECT_FALSE(test::chi_square_rejects(chi2, cells - 1)) << chi2;
+}
+
+TEST(Sampling, SphericalTriangleDirectionsAreUniformInSolidAngle) {
+  // Seen from afar, from nearby, and from just off the triangle's plane next to one of its edges, where area
+  // sampling's weight grows without bound: what the warp is for.
+  expect_uniform_in_solid_angle(Vec3(0.2f, 0.3f, 5.0f), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0));
+  expect_uniform_in_solid_angle(Vec3(0.2f, 0.1f, 0.3f), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0));
+  expect_uniform_in_solid_angle(Vec3(0.4f, -0.02f, 0.01f), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0));
 }
 
 // The branch-free (cos, sin) of 2 pi u against libm in double: everywhere in [0, 1], at every quarter turn and on
