@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <vector>
 
 #include "core/sampling.h"
 #include "core/spherical_triangle.h"
@@ -31,6 +32,18 @@ inline float height_above(float nx, float ny, float nz, float px, float py, floa
 /// with no short circuit: it runs in the branch-free lanes of PlacedLightSamples::place.)
 inline bool by_solid_angle(float area, float height) {
   return (height > 0.0f) & (area > kMaxAreaWeight * height * height);
+}
+
+/// Whether the light point at `origin + to_point` is unoccluded: one shadow ray from `origin`, stopping just short of
+/// the point (kShadowReach), counted in `rays_traced`.
+bool light_reaches(const TracedScene& traced, const Vec3& origin, const Vec3& to_point, uint64_t& rays_traced) {
+  Ray shadow;
+  shadow.origin = origin;
+  shadow.dir = to_point;
+  shadow.tmin = 0.0f;
+  shadow.tmax = kShadowReach;
+  ++rays_traced;
+  return !intersect_any(traced.accel, shadow);
 }
 
 /// A point on emitter `light` whose direction from `origin` (the surface point's leaving origin) is uniform over the
@@ -65,14 +78,7 @@ Vec3 sample_emitter(const TracedScene& traced, const SurfacePoint& sp, const Emi
                                               origin.z, light.p0))) {
     Vec3 point(0.0f);
     const float scale = place_by_solid_angle(sp, origin, light, u1, u2, point, wi);
-    if (!(scale > 0.0f)) return Vec3(0.0f);
-    Ray shadow;
-    shadow.origin = origin;
-    shadow.dir = point - shadow.origin;
-    shadow.tmin = 0.0f;
-    shadow.tmax = kShadowReach;
-    ++rays_traced;
-    if (intersect_any(traced.accel, shadow)) return Vec3(0.0f);
+    if (!(scale > 0.0f) || !light_reaches(traced, origin, point - origin, rays_traced)) return Vec3(0.0f);
     return light.ke * scale;
   }
   const Vec2 b = sample_uniform_triangle(u1, u2);
@@ -90,13 +96,8 @@ Vec3 sample_emitter(const TracedScene& traced, const SurfacePoint& sp, const Emi
   const float cos_surface = glm::dot(sp.shading_normal, wi);
   if (cos_surface <= 0.0f || glm::dot(sp.geometric_normal, wi) <= 0.0f) return Vec3(0.0f);
 
-  Ray shadow;
-  shadow.origin = offset_origin(sp.position, sp.geometric_normal, wi);
-  shadow.dir = light_point - shadow.origin;
-  shadow.tmin = 0.0f;
-  shadow.tmax = kShadowReach;
-  ++rays_traced;
-  if (intersect_any(traced.accel, shadow)) return Vec3(0.0f);
+  const Vec3 shadow_origin = offset_origin(sp.position, sp.geometric_normal, wi);
+  if (!light_reaches(traced, shadow_origin, light_point - shadow_origin, rays_traced)) return Vec3(0.0f);
   return light.ke * (cos_surface * cos_light * light.area / distance2);
 }
 
@@ -153,16 +154,12 @@ struct PlacedLightSamples {
 
   /// Places again, by solid angle, the samples whose emitter is too close to the surface point for area sampling:
   /// few, one at a time.
-  void place_close_ones(size_t count, const SurfacePoint& sp, const Vec3& shadow_origin) {
+  void place_close_ones(size_t count, const SurfacePoint& sp, const Vec3& shadow_origin,
+                        const std::vector<EmitterRecord>& records) {
     for (size_t k = 0; k < count; ++k) {
       if (!by_solid_angle_[k]) continue;
-      EmitterRecord emitter;
-      emitter.p0 = Vec3(p0x[k], p0y[k], p0z[k]);
-      emitter.p1 = Vec3(p1x[k], p1y[k], p1z[k]);
-      emitter.p2 = Vec3(p2x[k], p2y[k], p2z[k]);
-      emitter.normal = Vec3(nx[k], ny[k], nz[k]);
       Vec3 point(0.0f), wi(0.0f);
-      scale[k] = place_by_solid_angle(sp, shadow_origin, emitter, u1[k], u2[k], point, wi);
+      scale[k] = place_by_solid_angle(sp, shadow_origin, records[light[k]], u1[k], u2[k], point, wi);
       wi_x[k] = wi.x, wi_y[k] = wi.y, wi_z[k] = wi.z;
       to_x[k] = point.x - shadow_origin.x, to_y[k] = point.y - shadow_origin.y, to_z[k] = point.z - shadow_origin.z;
     }
@@ -217,16 +214,11 @@ Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, co
         placed.gather(k, table.records[choice.index], choice);
       }
       placed.place(static_cast<size_t>(count), sp, shadow_origin);
-      placed.place_close_ones(static_cast<size_t>(count), sp, shadow_origin);
+      placed.place_close_ones(static_cast<size_t>(count), sp, shadow_origin, table.records);
       for (size_t k = 0; k < static_cast<size_t>(count); ++k) {
         if (!(placed.scale[k] > 0.0f)) continue;
-        Ray shadow;
-        shadow.origin = shadow_origin;
-        shadow.dir = Vec3(placed.to_x[k], placed.to_y[k], placed.to_z[k]);
-        shadow.tmin = 0.0f;
-        shadow.tmax = kShadowReach;
-        ++rays_traced;
-        if (intersect_any(traced.accel, shadow)) continue;
+        if (!light_reaches(traced, shadow_origin, Vec3(placed.to_x[k], placed.to_y[k], placed.to_z[k]), rays_traced))
+          continue;
         const Vec3 light = table.records[placed.light[k]].ke * placed.scale[k] / placed.pmf[k];
         accumulate(light, Vec3(placed.wi_x[k], placed.wi_y[k], placed.wi_z[k]));
       }
