@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "render/brdf.h"
+#include "render/camera_light.h"
 #include "render/direct_light.h"
 #include "render/renderer.h"
 #include "scene/default_scene.h"
@@ -196,6 +197,78 @@ TEST(DirectLight, BlinnPhongMixWithKOneIsLambertAndLobeIsNormalised) {
   // With Ks the mix is not used: Kd / pi + Ks lobe.
   m.ks = Vec3(0.25f);
   EXPECT_NEAR(eval_brdf(m, m.kd, n, wi, mirror, 0.7f).r, 0.5f * kInvPi + 0.25f * 28.0f / (8.0f * kPi), 1e-5f);
+}
+
+// L1 recomputed at several bounce hits at once (their samples sharing a batch's lanes) must be what a call per point
+// gives, byte for byte, and trace the same rays: for every strategy (kAll and the head-light fall back on a call per
+// point), ray counts that fill a batch exactly, unevenly or not at all, both samplers, and points on the emitters
+// (which reflect nothing and take no lanes).
+TEST(DirectLight, SeveralPointsAtOnceGiveWhatOnePointAtATimeGives) {
+  Scene scene = make_default_scene();
+  for (Material& m : scene.materials)
+    if (m.name == "wall-lamp") m.kd = Vec3(0.0f);  // a black emitter: no L1 to estimate there
+  const auto traced = prepare_scene(std::move(scene));
+  std::vector<SurfacePoint> surface_points;
+  bool saw_emitter = false;
+  const Vec3 centre(278.0f, 274.0f, 280.0f);
+  for (int i = 0; i < 40; ++i) {  // a spiral of directions over the sphere
+    const float z = 1.0f - (2.0f * static_cast<float>(i) + 1.0f) / 40.0f, phi = 2.39996f * static_cast<float>(i);
+    const float r = std::sqrt(1.0f - z * z);
+    Ray ray;
+    ray.origin = centre;
+    ray.dir = Vec3(r * std::cos(phi), z, r * std::sin(phi));
+    const Hit hit = intersect_closest(traced->accel, ray);
+    if (!hit.found()) continue;
+    surface_points.push_back(make_surface_point(traced->scene, ray, hit));
+    saw_emitter |= !reflects_light(traced->scene.material_of(hit.triangle));
+  }
+  Ray toward_lamp;  // and the lamp itself (a square of 100 mm centred on (150, 430) at z = 558.7, facing -z)
+  toward_lamp.origin = Vec3(150.0f, 430.0f, 500.0f);
+  toward_lamp.dir = Vec3(0.0f, 0.0f, 1.0f);
+  const Hit lamp = intersect_closest(traced->accel, toward_lamp);
+  ASSERT_TRUE(lamp.found());
+  surface_points.insert(surface_points.begin() + 3, make_surface_point(traced->scene, toward_lamp, lamp));
+  saw_emitter |= !reflects_light(traced->scene.material_of(lamp.triangle));
+  ASSERT_GE(surface_points.size(), 30u);
+  EXPECT_TRUE(saw_emitter);
+
+  std::vector<const SurfacePoint*> points;
+  std::vector<uint64_t> first_samples;
+  for (size_t i = 0; i < surface_points.size(); ++i) {
+    points.push_back(&surface_points[i]);
+    first_samples.push_back(first_sample_of_run(3 * i + 1, 16));
+  }
+  const EmitterRecord head_light = make_camera_light(make_camera({Vec3(278, 273, -800), Vec3(278, 273, 0),
+                                                                  Vec3(0, 1, 0), 40.0f}, 64, 64),
+                                                      traced->diagonal);
+  for (const SamplerKind kind : {SamplerKind::kSobol, SamplerKind::kIndependent})
+    for (const LightStrategy strategy :
+         {LightStrategy::kArea, LightStrategy::kUniform, LightStrategy::kPower, LightStrategy::kAll})
+      for (const int rays : {1, 2, 3, 5, 16, 17})
+        for (const bool with_head_light : {false, true}) {
+          DirectLightOptions options;
+          options.strategy = strategy;
+          options.rays = rays;
+          options.camera_light = with_head_light ? &head_light : nullptr;
+          const std::string where = "sampler " + std::to_string(static_cast<int>(kind)) + ", strategy " +
+                                    std::to_string(static_cast<int>(strategy)) + ", " + std::to_string(rays) +
+                                    " rays" + (with_head_light ? ", head-light" : "");
+          PixelSampler one_sampler(kind, 9, 1234, 5, RngPurpose::kRecompute);
+          PixelSampler many_sampler(kind, 9, 1234, 5, RngPurpose::kRecompute);
+          uint64_t one_rays = 0, many_rays = 0;
+          std::vector<Vec3> l1(points.size()), arriving(points.size());
+          estimate_direct_light_at_points(*traced, points.data(), first_samples.data(), points.size(), options,
+                                          many_sampler, many_rays, l1.data(), arriving.data());
+          for (size_t i = 0; i < points.size(); ++i) {
+            Vec3 one_arriving(0.0f);
+            const Vec3 one = estimate_direct_light(*traced, *points[i], options, one_sampler, first_samples[i],
+                                                   one_rays, nullptr, &one_arriving);
+            ASSERT_EQ(l1[i], one) << where << ", point " << i;
+            ASSERT_EQ(arriving[i], one_arriving) << where << ", point " << i;
+          }
+          EXPECT_EQ(many_rays, one_rays) << where;
+          EXPECT_GT(many_rays, 0u) << where;
+        }
 }
 
 }  // namespace

@@ -76,24 +76,19 @@ class PixelSampler {
   /// choice (`one`) and point on the light (`x`, `y`). The Sobol numbers of all the samples are computed together,
   /// in SIMD lanes.
   void draw_1d_2d(uint64_t first_sample, int count, float* one, float* x, float* y) {
-    if (kind_ == SamplerKind::kIndependent) {
-      for (int k = 0; k < count; ++k) {
-        start_sample(first_sample + static_cast<uint64_t>(k));
-        one[k] = get_1d();
-        const Vec2 u = get_2d();
-        x[k] = u.x;
-        y[k] = u.y;
-      }
-      return;
-    }
-    const DimensionSeeds first = seeds_of(0), second = seeds_of(1);
-    for (int k = 0; k < count; ++k) {
-      const uint32_t reversed = reverse_bits_by_shifts(static_cast<uint32_t>(first_sample + static_cast<uint64_t>(k)));
-      one[k] = lane_dimension_0(lane_index(reversed, first.index), first.x);
-      const uint32_t index = lane_index(reversed, second.index);
-      x[k] = lane_dimension_0(index, second.x);
-      y[k] = lane_dimension_1(index, second.y);
-    }
+    draw_1d_2d_lanes(
+        count, [first_sample](int k) { return first_sample + static_cast<uint64_t>(k); }, one, x, y);
+  }
+
+  /// draw_1d_2d for `runs` runs of `count` samples each (at most kSampleBatch in all), run r from
+  /// `first_samples[r]` on, into consecutive lanes: L1 at several surface points at once.
+  void draw_1d_2d_runs(const uint64_t* first_samples, int runs, int count, float* one, float* x, float* y) {
+    std::array<uint32_t, kSampleBatch> samples;  // the sequence repeats after 2^32 samples (start_sample)
+    int lanes = 0;
+    for (int r = 0; r < runs; ++r)
+      for (int k = 0; k < count; ++k)
+        samples[static_cast<size_t>(lanes++)] = static_cast<uint32_t>(first_samples[r] + static_cast<uint64_t>(k));
+    draw_1d_2d_lanes(lanes, [&samples](int k) { return samples[static_cast<size_t>(k)]; }, one, x, y);
   }
 
   /// For `count` samples from `first_sample` on, what each would give for get_2d: a bounce or AO direction.
@@ -117,6 +112,29 @@ class PixelSampler {
   }
 
  private:
+  /// draw_1d_2d's numbers for `count` lanes, lane k drawing sample `sample_of(k)`.
+  template <class SampleOf>
+  void draw_1d_2d_lanes(int count, SampleOf sample_of, float* one, float* x, float* y) {
+    if (kind_ == SamplerKind::kIndependent) {
+      for (int k = 0; k < count; ++k) {
+        start_sample(sample_of(k));
+        one[k] = get_1d();
+        const Vec2 u = get_2d();
+        x[k] = u.x;
+        y[k] = u.y;
+      }
+      return;
+    }
+    const DimensionSeeds first = seeds_of(0), second = seeds_of(1);
+    for (int k = 0; k < count; ++k) {
+      const uint32_t reversed = reverse_bits_by_shifts(static_cast<uint32_t>(sample_of(k)));
+      one[k] = lane_dimension_0(lane_index(reversed, first.index), first.x);
+      const uint32_t index = lane_index(reversed, second.index);
+      x[k] = lane_dimension_0(index, second.x);
+      y[k] = lane_dimension_1(index, second.y);
+    }
+  }
+
   /// The scrambling seeds of one dimension (pair): for the index shuffle and for each coordinate.
   struct DimensionSeeds {
     uint32_t index = 0, x = 0, y = 0;

@@ -103,7 +103,9 @@ Vec3 sample_emitter(const TracedScene& traced, const SurfacePoint& sp, const Emi
 
 /// A batch of light samples in plain arrays: the emitter each one chose and its numbers, then, once placed, the
 /// direction to its point and what the point sends if nothing is in the way. `place` repeats sample_emitter's
-/// arithmetic operation for operation (the same bytes), lane by lane and without branches.
+/// arithmetic operation for operation (the same bytes), lane by lane and without branches. The lanes see one surface
+/// point (`place<false>`: L1 at a pixel's hit) or each its own (`place<true>`, after `set_point`: L1 recomputed at
+/// several bounce hits at once).
 struct PlacedLightSamples {
   using Lanes = std::array<float, kSampleBatch>;
   Lanes u1, u2;                                       // the point's numbers
@@ -114,6 +116,9 @@ struct PlacedLightSamples {
   Lanes to_x, to_y, to_z;  // from the shadow ray's origin to the point
   Lanes scale;             // cos_surface cos_light area / d^2, or 0 where the point cannot light the surface
   std::array<bool, kSampleBatch> by_solid_angle_;  // placed again by solid angle (place_close_ones)
+  // Each lane's surface point, its normals and its shadow rays' origin (place<true> only).
+  Lanes sp_x, sp_y, sp_z, sn_x, sn_y, sn_z, gn_x, gn_y, gn_z, o_x, o_y, o_z;
+  std::array<const SurfacePoint*, kSampleBatch> point_of;
 
   void gather(size_t k, const EmitterRecord& record, const LightChoice& choice) {
     p0x[k] = record.p0.x, p0y[k] = record.p0.y, p0z[k] = record.p0.z;
@@ -125,46 +130,116 @@ struct PlacedLightSamples {
     light[k] = choice.index;
   }
 
+  void set_point(size_t k, const SurfacePoint& sp, const Vec3& origin) {
+    sp_x[k] = sp.position.x, sp_y[k] = sp.position.y, sp_z[k] = sp.position.z;
+    sn_x[k] = sp.shading_normal.x, sn_y[k] = sp.shading_normal.y, sn_z[k] = sp.shading_normal.z;
+    gn_x[k] = sp.geometric_normal.x, gn_y[k] = sp.geometric_normal.y, gn_z[k] = sp.geometric_normal.z;
+    o_x[k] = origin.x, o_y[k] = origin.y, o_z[k] = origin.z;
+    point_of[k] = &sp;
+  }
+
+  /// Lane k's shadow-ray origin: its own, or the one all lanes share.
+  template <bool kPerLane>
+  Vec3 origin_of(size_t k, const Vec3& shared) const {
+    return kPerLane ? Vec3(o_x[k], o_y[k], o_z[k]) : shared;
+  }
+
+  template <bool kPerLane>
   void place(size_t count, const SurfacePoint& sp, const Vec3& shadow_origin) {
     for (size_t k = 0; k < count; ++k) {
+      const float px = kPerLane ? sp_x[k] : sp.position.x, py = kPerLane ? sp_y[k] : sp.position.y,
+                  pz = kPerLane ? sp_z[k] : sp.position.z;
+      const float snx = kPerLane ? sn_x[k] : sp.shading_normal.x, sny = kPerLane ? sn_y[k] : sp.shading_normal.y,
+                  snz = kPerLane ? sn_z[k] : sp.shading_normal.z;
+      const float gnx = kPerLane ? gn_x[k] : sp.geometric_normal.x, gny = kPerLane ? gn_y[k] : sp.geometric_normal.y,
+                  gnz = kPerLane ? gn_z[k] : sp.geometric_normal.z;
+      const float ox = kPerLane ? o_x[k] : shadow_origin.x, oy = kPerLane ? o_y[k] : shadow_origin.y,
+                  oz = kPerLane ? o_z[k] : shadow_origin.z;
       const float su = std::sqrt(u1[k]);
       const float bx = su * (1.0f - u2[k]), by = su * u2[k];
       const float b0 = 1.0f - bx - by;
       const float lx = b0 * p0x[k] + bx * p1x[k] + by * p2x[k];
       const float ly = b0 * p0y[k] + bx * p1y[k] + by * p2y[k];
       const float lz = b0 * p0z[k] + bx * p1z[k] + by * p2z[k];
-      const float tx = lx - sp.position.x, ty = ly - sp.position.y, tz = lz - sp.position.z;
+      const float tx = lx - px, ty = ly - py, tz = lz - pz;
       const float distance2 = tx * tx + ty * ty + tz * tz;
       const float inv_distance = 1.0f / std::sqrt(distance2);
       const float wx = tx * inv_distance, wy = ty * inv_distance, wz = tz * inv_distance;
       const float cos_light = -(nx[k] * wx + ny[k] * wy + nz[k] * wz);
-      const float cos_surface = sp.shading_normal.x * wx + sp.shading_normal.y * wy + sp.shading_normal.z * wz;
-      const float cos_geometric = sp.geometric_normal.x * wx + sp.geometric_normal.y * wy + sp.geometric_normal.z * wz;
+      const float cos_surface = snx * wx + sny * wy + snz * wz;
+      const float cos_geometric = gnx * wx + gny * wy + gnz * wz;
       // Non-short-circuit tests, and the division made whatever the outcome: no branch in the loop.
       const bool lit = (distance2 > 0.0f) & (cos_light > 0.0f) & !(cos_surface <= 0.0f) & !(cos_geometric <= 0.0f);
       const float unoccluded_scale = cos_surface * cos_light * area[k] / distance2;
       wi_x[k] = wx, wi_y[k] = wy, wi_z[k] = wz;
-      to_x[k] = lx - shadow_origin.x, to_y[k] = ly - shadow_origin.y, to_z[k] = lz - shadow_origin.z;
+      to_x[k] = lx - ox, to_y[k] = ly - oy, to_z[k] = lz - oz;
       scale[k] = lit ? unoccluded_scale : 0.0f;
-      const float height = height_above(nx[k], ny[k], nz[k], shadow_origin.x, shadow_origin.y, shadow_origin.z,
-                                        Vec3(p0x[k], p0y[k], p0z[k]));
+      const float height = height_above(nx[k], ny[k], nz[k], ox, oy, oz, Vec3(p0x[k], p0y[k], p0z[k]));
       by_solid_angle_[k] = by_solid_angle(area[k], height);
     }
   }
 
   /// Places again, by solid angle, the samples whose emitter is too close to the surface point for area sampling:
   /// few, one at a time.
+  template <bool kPerLane>
   void place_close_ones(size_t count, const SurfacePoint& sp, const Vec3& shadow_origin,
                         const std::vector<EmitterRecord>& records) {
     for (size_t k = 0; k < count; ++k) {
       if (!by_solid_angle_[k]) continue;
+      const SurfacePoint& at = kPerLane ? *point_of[k] : sp;
+      const Vec3 origin = origin_of<kPerLane>(k, shadow_origin);
       Vec3 point(0.0f), wi(0.0f);
-      scale[k] = place_by_solid_angle(sp, shadow_origin, records[light[k]], u1[k], u2[k], point, wi);
+      scale[k] = place_by_solid_angle(at, origin, records[light[k]], u1[k], u2[k], point, wi);
       wi_x[k] = wi.x, wi_y[k] = wi.y, wi_z[k] = wi.z;
-      to_x[k] = point.x - shadow_origin.x, to_y[k] = point.y - shadow_origin.y, to_z[k] = point.z - shadow_origin.z;
+      to_x[k] = point.x - origin.x, to_y[k] = point.y - origin.y, to_z[k] = point.z - origin.z;
     }
   }
 };
+
+/// One surface point's sums over its light samples: the reflected light, its part from the BRDF's diffuse term,
+/// and the light arriving.
+struct L1Sums {
+  Vec3 reflected{0.0f}, diffuse{0.0f}, arriving{0.0f};
+
+  void add(const Vec3& light, const Vec3& wi, const Material& material, const SurfacePoint& sp,
+           const DirectLightOptions& options, const Vec3& f_diffuse) {
+    if (light.r <= 0.0f && light.g <= 0.0f && light.b <= 0.0f) return;
+    Vec3 f = eval_brdf(material, sp.albedo, sp.shading_normal, wi, sp.wo, options.blinn_k);
+    if (options.specular_only) f -= f_diffuse;
+    reflected += light * f;
+    diffuse += light * f_diffuse;
+    arriving += light;
+  }
+};
+
+/// The emitters chosen by lanes [0, count) of `placed`, whose light-choice numbers are `choice_u`, gathered.
+void choose_lights(const LightTable& table, LightStrategy strategy, const float* choice_u, size_t count,
+                   PlacedLightSamples& placed) {
+  for (size_t k = 0; k < count; ++k) {
+    const LightChoice choice = choose_light(table, strategy, choice_u[k]);
+    placed.gather(k, table.records[choice.index], choice);
+  }
+}
+
+/// The light lane k of a placed batch brings, if its shadow ray reaches the point (0 otherwise).
+template <bool kPerLane>
+bool light_of_lane(const TracedScene& traced, const PlacedLightSamples& placed, size_t k, const Vec3& shadow_origin,
+                   uint64_t& rays_traced, Vec3& light, Vec3& wi) {
+  if (!(placed.scale[k] > 0.0f)) return false;
+  if (!light_reaches(traced, placed.origin_of<kPerLane>(k, shadow_origin),
+                     Vec3(placed.to_x[k], placed.to_y[k], placed.to_z[k]), rays_traced))
+    return false;
+  light = traced.lights.records[placed.light[k]].ke * placed.scale[k] / placed.pmf[k];
+  wi = Vec3(placed.wi_x[k], placed.wi_y[k], placed.wi_z[k]);
+  return true;
+}
+
+/// Whether L1 at several points can share a batch's lanes: one shadow ray per sample to one chosen emitter, every
+/// point's samples in one batch.
+bool batches_points(const LightTable& table, const DirectLightOptions& options) {
+  return !table.empty() && options.strategy != LightStrategy::kAll && !options.camera_light &&
+         options.rays > 0 && options.rays <= kSampleBatch;
+}
 
 }  // namespace
 
@@ -179,15 +254,7 @@ Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, co
   if (!reflects_light(material)) return Vec3(0.0f);
   const Vec3 f_diffuse = eval_brdf_diffuse(material, sp.albedo, options.blinn_k);
 
-  Vec3 sum(0.0f), diffuse_sum(0.0f), arriving_sum(0.0f);
-  auto accumulate = [&](const Vec3& light, const Vec3& wi) {
-    if (light.r <= 0.0f && light.g <= 0.0f && light.b <= 0.0f) return;
-    Vec3 f = eval_brdf(material, sp.albedo, sp.shading_normal, wi, sp.wo, options.blinn_k);
-    if (options.specular_only) f -= f_diffuse;
-    sum += light * f;
-    diffuse_sum += light * f_diffuse;
-    arriving_sum += light;
-  };
+  L1Sums sums;
   Vec3 wi(0.0f);
   if (table.empty()) {
     // Only the head-light below.
@@ -196,31 +263,27 @@ Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, co
       sampler.start_sample(first_sample + static_cast<uint64_t>(s));
       for (uint32_t i = 0; i < table.size(); ++i) {
         const Vec2 u = sampler.get_2d();
-        accumulate(sample_emitter(traced, sp, table.records[i], u.x, u.y, wi, rays_traced), wi);
+        const Vec3 light = sample_emitter(traced, sp, table.records[i], u.x, u.y, wi, rays_traced);
+        sums.add(light, wi, material, sp, options, f_diffuse);
       }
     }
   } else {
     // A batch of samples at a time: their numbers, then every light point placed (with no branch, so that the
     // compiler places several per instruction), then the shadow rays of the samples that can carry light.
-    std::array<float, kSampleBatch> choice_u;
     PlacedLightSamples placed;
     const Vec3 shadow_origin = leaving_origin(sp);
     for (int batch = 0; batch < options.rays; batch += kSampleBatch) {
-      const int count = std::min(kSampleBatch, options.rays - batch);
-      sampler.draw_1d_2d(first_sample + static_cast<uint64_t>(batch), count, choice_u.data(), placed.u1.data(),
-                         placed.u2.data());
-      for (size_t k = 0; k < static_cast<size_t>(count); ++k) {
-        const LightChoice choice = choose_light(table, options.strategy, choice_u[k]);
-        placed.gather(k, table.records[choice.index], choice);
-      }
-      placed.place(static_cast<size_t>(count), sp, shadow_origin);
-      placed.place_close_ones(static_cast<size_t>(count), sp, shadow_origin, table.records);
-      for (size_t k = 0; k < static_cast<size_t>(count); ++k) {
-        if (!(placed.scale[k] > 0.0f)) continue;
-        if (!light_reaches(traced, shadow_origin, Vec3(placed.to_x[k], placed.to_y[k], placed.to_z[k]), rays_traced))
-          continue;
-        const Vec3 light = table.records[placed.light[k]].ke * placed.scale[k] / placed.pmf[k];
-        accumulate(light, Vec3(placed.wi_x[k], placed.wi_y[k], placed.wi_z[k]));
+      const auto count = static_cast<size_t>(std::min(kSampleBatch, options.rays - batch));
+      std::array<float, kSampleBatch> choice_u;
+      sampler.draw_1d_2d(first_sample + static_cast<uint64_t>(batch), static_cast<int>(count), choice_u.data(),
+                         placed.u1.data(), placed.u2.data());
+      choose_lights(table, options.strategy, choice_u.data(), count, placed);
+      placed.place<false>(count, sp, shadow_origin);
+      placed.place_close_ones<false>(count, sp, shadow_origin, table.records);
+      for (size_t k = 0; k < count; ++k) {
+        Vec3 light(0.0f);
+        if (light_of_lane<false>(traced, placed, k, shadow_origin, rays_traced, light, wi))
+          sums.add(light, wi, material, sp, options, f_diffuse);
       }
     }
   }
@@ -232,13 +295,68 @@ Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, co
     for (int s = 0; s < options.rays; ++s) {
       sampler.start_sample(first_sample + static_cast<uint64_t>(s));
       const Vec2 u = sampler.get_2d_of_dimension(dimension);
-      accumulate(sample_emitter(traced, sp, *options.camera_light, u.x, u.y, wi, rays_traced), wi);
+      const Vec3 light = sample_emitter(traced, sp, *options.camera_light, u.x, u.y, wi, rays_traced);
+      sums.add(light, wi, material, sp, options, f_diffuse);
     }
   }
   const float inv = 1.0f / static_cast<float>(options.rays);
-  if (diffuse_part) *diffuse_part = diffuse_sum * inv;
-  if (arriving) *arriving = arriving_sum * inv;
-  return sum * inv;
+  if (diffuse_part) *diffuse_part = sums.diffuse * inv;
+  if (arriving) *arriving = sums.arriving * inv;
+  return sums.reflected * inv;
+}
+
+void estimate_direct_light_at_points(const TracedScene& traced, const SurfacePoint* const* points,
+                                     const uint64_t* first_samples, size_t count, const DirectLightOptions& options,
+                                     PixelSampler& sampler, uint64_t& rays_traced, Vec3* l1, Vec3* arriving) {
+  const LightTable& table = traced.lights;
+  if (!batches_points(table, options) || options.specular_only) {
+    for (size_t i = 0; i < count; ++i)
+      l1[i] = estimate_direct_light(traced, *points[i], options, sampler, first_samples[i], rays_traced, nullptr,
+                                    arriving ? &arriving[i] : nullptr);
+    return;
+  }
+  const auto rays = static_cast<size_t>(options.rays);
+  const size_t points_per_batch = static_cast<size_t>(kSampleBatch) / rays;
+  const float inv = 1.0f / static_cast<float>(options.rays);
+  PlacedLightSamples placed;
+  std::array<size_t, kSampleBatch> batch_points;  // which of `points` each run of `rays` lanes serves
+  std::array<uint64_t, kSampleBatch> batch_first_samples;
+  std::array<float, kSampleBatch> choice_u;
+  size_t next = 0;
+  while (next < count) {
+    // The next points that reflect light take a run of lanes each; the others have no L1.
+    size_t in_batch = 0;
+    for (; next < count && in_batch < points_per_batch; ++next) {
+      l1[next] = Vec3(0.0f);
+      if (arriving) arriving[next] = Vec3(0.0f);
+      const SurfacePoint& sp = *points[next];
+      if (!reflects_light(traced.scene.material_of(sp.triangle))) continue;
+      const Vec3 origin = leaving_origin(sp);
+      for (size_t k = in_batch * rays; k < (in_batch + 1) * rays; ++k) placed.set_point(k, sp, origin);
+      batch_first_samples[in_batch] = first_samples[next];
+      batch_points[in_batch++] = next;
+    }
+    const size_t lanes = in_batch * rays;
+    sampler.draw_1d_2d_runs(batch_first_samples.data(), static_cast<int>(in_batch), options.rays, choice_u.data(),
+                            placed.u1.data(), placed.u2.data());
+    choose_lights(table, options.strategy, choice_u.data(), lanes, placed);
+    placed.place<true>(lanes, *points[0], Vec3(0.0f));
+    placed.place_close_ones<true>(lanes, *points[0], Vec3(0.0f), table.records);
+    for (size_t j = 0; j < in_batch; ++j) {
+      const size_t i = batch_points[j];
+      const SurfacePoint& sp = *points[i];
+      const Material& material = traced.scene.material_of(sp.triangle);
+      const Vec3 f_diffuse = eval_brdf_diffuse(material, sp.albedo, options.blinn_k);
+      L1Sums sums;
+      for (size_t k = j * rays; k < (j + 1) * rays; ++k) {
+        Vec3 light(0.0f), wi(0.0f);
+        if (light_of_lane<true>(traced, placed, k, Vec3(0.0f), rays_traced, light, wi))
+          sums.add(light, wi, material, sp, options, f_diffuse);
+      }
+      l1[i] = sums.reflected * inv;
+      if (arriving) arriving[i] = sums.arriving * inv;
+    }
+  }
 }
 
 }  // namespace lueur

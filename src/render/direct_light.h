@@ -31,4 +31,12 @@ Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, co
                            PixelSampler& sampler, uint64_t first_sample, uint64_t& rays_traced,
                            Vec3* diffuse_part = nullptr, Vec3* arriving = nullptr);
 
+/// estimate_direct_light at `count` surface points (without `diffuse_part`): point i's L1 from samples
+/// `first_samples[i]` onwards into `l1[i]`, and its arriving light into `arriving[i]` when given. The same values,
+/// byte for byte, as a call per point; but the samples of several points share a batch's lanes (L2's bounce hits
+/// recompute L1 with 2 rays each, a batch of 16 lanes holds 8 of them).
+void estimate_direct_light_at_points(const TracedScene& traced, const SurfacePoint* const* points,
+                                     const uint64_t* first_samples, size_t count, const DirectLightOptions& options,
+                                     PixelSampler& sampler, uint64_t& rays_traced, Vec3* l1, Vec3* arriving = nullptr);
+
 }  // namespace lueur

@@ -193,17 +193,6 @@ bool l1_from_ready_cell(const TracedScene& traced, PendingBounce& b, const Rende
   return true;
 }
 
-/// L1(q) traced anew, and recorded for the store.
-Vec3 l1_traced_for_store(const TracedScene& traced, PendingBounce& b, const DirectLightOptions& recompute,
-                         const L1CacheAccess& cache, PixelSampler& sampler, uint64_t first_shadow_sample,
-                         uint64_t& rays_traced) {
-  Vec3 arriving(0.0f);
-  const Vec3 l1_q = estimate_direct_light(traced, surface_of(traced.scene, b), recompute, sampler, first_shadow_sample,
-                                          rays_traced, nullptr, &arriving);
-  cache.records->push_back(make_l1_record(b.key, b.hash, arriving, static_cast<uint32_t>(std::max(recompute.rays, 0))));
-  return l1_q;
-}
-
 /// Turns L1 at a point of albedo `seen` into L1 at a point of albedo `wanted`; false (nothing changed) where a
 /// channel of `seen` is black and that of `wanted` is not, whose light the pixel cannot tell.
 bool rescale_to_albedo(const Vec3& seen, const Vec3& wanted, Vec3& l1) {
@@ -216,6 +205,12 @@ bool rescale_to_albedo(const Vec3& seen, const Vec3& wanted, Vec3& l1) {
   }
   l1 = scaled;
   return true;
+}
+
+/// What a bounce along `dir` brings to p, whose L1(q) is `l1_q`: f cos / pdf with pdf = cos / pi.
+Vec3 bounce_contribution(const Material& material, const SurfacePoint& sp, const Vec3& dir, float blinn_k,
+                         const Vec3& l1_q) {
+  return eval_brdf(material, sp.albedo, sp.shading_normal, dir, sp.wo, blinn_k) * kPi * l1_q;
 }
 
 }  // namespace
@@ -280,11 +275,14 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
       ++pending_count;
     }
 
-    for (int k = 0; k < pending_count; ++k) {
-      PendingBounce& b = pending.items[static_cast<size_t>(k)];
+    // L1(q) toward p: from the store's ready cell, or from the screen where the camera saw q. The rest is traced
+    // anew below, the whole batch's at once.
+    std::array<size_t, kSampleBatch> traced_anew;
+    size_t traced_anew_count = 0;
+    for (size_t k = 0; k < static_cast<size_t>(pending_count); ++k) {
+      PendingBounce& b = pending.items[k];
       ++result.bounce_hits;
       const uint64_t first_shadow_sample = first_sample_of_run(b.sample, recompute.rays);
-      // L1(q) toward p: from the store's ready cell, from the screen where the camera saw q, otherwise traced anew.
       Vec3 l1_q(0.0f);
       bool reused = false;
       const bool cached = cache && l1_from_ready_cell(traced, b, settings, recompute, *cache, recompute_sampler,
@@ -308,23 +306,38 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
         }
       }
       if (!reused && !cached) {
-        l1_q = cache ? l1_traced_for_store(traced, b, recompute, *cache, recompute_sampler, first_shadow_sample,
-                                           rays_traced)
-                     : estimate_direct_light(traced, surface_of(scene, b), recompute, recompute_sampler,
-                                             first_shadow_sample, rays_traced);
+        traced_anew[traced_anew_count++] = k;
+        continue;
       }
-
-      // f cos / pdf with pdf = cos / pi.
-      const Vec3 contribution =
-          eval_brdf(material, sp.albedo, sp.shading_normal, b.ray.dir, sp.wo, settings.blinn_k) * kPi * l1_q;
+      const Vec3 contribution = bounce_contribution(material, sp, b.ray.dir, settings.blinn_k, l1_q);
       if (reused) {
         result.from_reused += contribution;
         ++result.reused;
-      } else if (cached) {
+      } else {
         result.from_cached += contribution;
         ++result.cached;
-      } else {
-        result.from_recomputed += contribution;
+      }
+    }
+
+    if (traced_anew_count > 0) {
+      // Their L1 with `recompute`'s rays, the samples of several bounce hits sharing a batch's lanes; with the store,
+      // each also becomes a record for it, in the order of the bounces.
+      std::array<const SurfacePoint*, kSampleBatch> points;
+      std::array<uint64_t, kSampleBatch> first_samples;
+      std::array<Vec3, kSampleBatch> l1, arriving;
+      for (size_t j = 0; j < traced_anew_count; ++j) {
+        PendingBounce& b = pending.items[traced_anew[j]];
+        points[j] = &surface_of(scene, b);
+        first_samples[j] = first_sample_of_run(b.sample, recompute.rays);
+      }
+      estimate_direct_light_at_points(traced, points.data(), first_samples.data(), traced_anew_count, recompute,
+                                      recompute_sampler, rays_traced, l1.data(), cache ? arriving.data() : nullptr);
+      for (size_t j = 0; j < traced_anew_count; ++j) {
+        const PendingBounce& b = pending.items[traced_anew[j]];
+        if (cache)
+          cache->records->push_back(
+              make_l1_record(b.key, b.hash, arriving[j], static_cast<uint32_t>(std::max(recompute.rays, 0))));
+        result.from_recomputed += bounce_contribution(material, sp, b.ray.dir, settings.blinn_k, l1[j]);
       }
     }
   }
