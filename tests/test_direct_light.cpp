@@ -201,8 +201,8 @@ TEST(DirectLight, BlinnPhongMixWithKOneIsLambertAndLobeIsNormalised) {
 
 // L1 recomputed at several bounce hits at once (their samples sharing a batch's lanes) must be what a call per point
 // gives, byte for byte, and trace the same rays: for every strategy (kAll and the head-light fall back on a call per
-// point), ray counts that fill a batch exactly, unevenly or not at all, both samplers, and points on the emitters
-// (which reflect nothing and take no lanes).
+// point), ray counts that fill a batch exactly, unevenly or not at all, the whole BRDF or its view-dependent part,
+// both samplers, and points on a black emitter (which reflect nothing and take no lanes).
 TEST(DirectLight, SeveralPointsAtOnceGiveWhatOnePointAtATimeGives) {
   Scene scene = make_default_scene();
   for (Material& m : scene.materials)
@@ -238,37 +238,39 @@ TEST(DirectLight, SeveralPointsAtOnceGiveWhatOnePointAtATimeGives) {
     points.push_back(&surface_points[i]);
     first_samples.push_back(first_sample_of_run(3 * i + 1, 16));
   }
-  const EmitterRecord head_light = make_camera_light(make_camera({Vec3(278, 273, -800), Vec3(278, 273, 0),
-                                                                  Vec3(0, 1, 0), 40.0f}, 64, 64),
-                                                      traced->diagonal);
+  const EmitterRecord head_light = make_camera_light(
+      make_camera({Vec3(278, 273, -800), Vec3(278, 273, 0), Vec3(0, 1, 0), 40.0f}, 64, 64), traced->diagonal);
   for (const SamplerKind kind : {SamplerKind::kSobol, SamplerKind::kIndependent})
     for (const LightStrategy strategy :
          {LightStrategy::kArea, LightStrategy::kUniform, LightStrategy::kPower, LightStrategy::kAll})
       for (const int rays : {1, 2, 3, 5, 16, 17})
-        for (const bool with_head_light : {false, true}) {
-          DirectLightOptions options;
-          options.strategy = strategy;
-          options.rays = rays;
-          options.camera_light = with_head_light ? &head_light : nullptr;
-          const std::string where = "sampler " + std::to_string(static_cast<int>(kind)) + ", strategy " +
-                                    std::to_string(static_cast<int>(strategy)) + ", " + std::to_string(rays) +
-                                    " rays" + (with_head_light ? ", head-light" : "");
-          PixelSampler one_sampler(kind, 9, 1234, 5, RngPurpose::kRecompute);
-          PixelSampler many_sampler(kind, 9, 1234, 5, RngPurpose::kRecompute);
-          uint64_t one_rays = 0, many_rays = 0;
-          std::vector<Vec3> l1(points.size()), arriving(points.size());
-          estimate_direct_light_at_points(*traced, points.data(), first_samples.data(), points.size(), options,
-                                          many_sampler, many_rays, l1.data(), arriving.data());
-          for (size_t i = 0; i < points.size(); ++i) {
-            Vec3 one_arriving(0.0f);
-            const Vec3 one = estimate_direct_light(*traced, *points[i], options, one_sampler, first_samples[i],
-                                                   one_rays, nullptr, &one_arriving);
-            ASSERT_EQ(l1[i], one) << where << ", point " << i;
-            ASSERT_EQ(arriving[i], one_arriving) << where << ", point " << i;
+        for (const bool with_head_light : {false, true})
+          for (const bool specular_only : {false, true}) {
+            DirectLightOptions options;
+            options.strategy = strategy;
+            options.rays = rays;
+            options.camera_light = with_head_light ? &head_light : nullptr;
+            options.specular_only = specular_only;
+            const std::string where = "sampler " + std::to_string(static_cast<int>(kind)) + ", strategy " +
+                                      std::to_string(static_cast<int>(strategy)) + ", " + std::to_string(rays) +
+                                      " rays" + (with_head_light ? ", head-light" : "") +
+                                      (specular_only ? ", specular part only" : "");
+            PixelSampler one_sampler(kind, 9, 1234, 5, RngPurpose::kRecompute);
+            PixelSampler many_sampler(kind, 9, 1234, 5, RngPurpose::kRecompute);
+            uint64_t one_rays = 0, many_rays = 0;
+            std::vector<Vec3> l1(points.size()), arriving(points.size());
+            estimate_direct_light_at_points(*traced, points.data(), first_samples.data(), points.size(), options,
+                                            many_sampler, many_rays, l1.data(), arriving.data());
+            for (size_t i = 0; i < points.size(); ++i) {
+              Vec3 one_arriving(0.0f);
+              const Vec3 one = estimate_direct_light(*traced, *points[i], options, one_sampler, first_samples[i],
+                                                     one_rays, nullptr, &one_arriving);
+              ASSERT_EQ(l1[i], one) << where << ", point " << i;
+              ASSERT_EQ(arriving[i], one_arriving) << where << ", point " << i;
+            }
+            EXPECT_EQ(many_rays, one_rays) << where;
+            EXPECT_GT(many_rays, 0u) << where;
           }
-          EXPECT_EQ(many_rays, one_rays) << where;
-          EXPECT_GT(many_rays, 0u) << where;
-        }
 }
 
 }  // namespace

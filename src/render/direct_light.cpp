@@ -221,7 +221,8 @@ void choose_lights(const LightTable& table, LightStrategy strategy, const float*
   }
 }
 
-/// The light lane k of a placed batch brings, if its shadow ray reaches the point (0 otherwise).
+/// Whether lane k of a placed batch can carry light and its shadow ray reaches the point; if so, `light` and `wi`
+/// receive the light it brings (Le x scale / pmf) and the direction it arrives from.
 template <bool kPerLane>
 bool light_of_lane(const TracedScene& traced, const PlacedLightSamples& placed, size_t k, const Vec3& shadow_origin,
                    uint64_t& rays_traced, Vec3& light, Vec3& wi) {
@@ -309,7 +310,7 @@ void estimate_direct_light_at_points(const TracedScene& traced, const SurfacePoi
                                      const uint64_t* first_samples, size_t count, const DirectLightOptions& options,
                                      PixelSampler& sampler, uint64_t& rays_traced, Vec3* l1, Vec3* arriving) {
   const LightTable& table = traced.lights;
-  if (!batches_points(table, options) || options.specular_only) {
+  if (!batches_points(table, options)) {
     for (size_t i = 0; i < count; ++i)
       l1[i] = estimate_direct_light(traced, *points[i], options, sampler, first_samples[i], rays_traced, nullptr,
                                     arriving ? &arriving[i] : nullptr);
