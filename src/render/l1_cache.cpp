@@ -174,11 +174,34 @@ void L1Cache::insert(Shard& shard, const L1CacheRecord& record) {
 }
 
 void L1Cache::merge(const std::vector<std::vector<L1CacheRecord>>& batches, ThreadPool& pool) {
+  // First each batch's records listed by shard (batches in parallel), so that a shard's task reads only its own
+  // records, in the order the batches hold them, and can start loading the slot of a record a few ahead.
+  std::vector<std::vector<uint32_t>> by_shard(batches.size());
+  std::vector<std::array<uint32_t, kShards + 1>> starts(batches.size());
+  pool.parallel_for(static_cast<int>(batches.size()), [&](int b, int) {
+    const std::vector<L1CacheRecord>& batch = batches[static_cast<size_t>(b)];
+    std::array<uint32_t, kShards + 1>& start = starts[static_cast<size_t>(b)];
+    start.fill(0);
+    for (const L1CacheRecord& r : batch) ++start[shard_of(r.hash) + 1];
+    for (size_t s = 0; s < kShards; ++s) start[s + 1] += start[s];
+    std::array<uint32_t, kShards> next;
+    std::copy(start.begin(), start.end() - 1, next.begin());
+    std::vector<uint32_t>& order = by_shard[static_cast<size_t>(b)];
+    order.resize(batch.size());
+    for (size_t i = 0; i < batch.size(); ++i) order[next[shard_of(batch[i].hash)]++] = static_cast<uint32_t>(i);
+  });
   pool.parallel_for(kShards, [&](int s, int) {
     Shard& shard = shards_[static_cast<size_t>(s)];
-    for (const std::vector<L1CacheRecord>& batch : batches)
-      for (const L1CacheRecord& r : batch)
-        if (L1Cache::shard_of(r.hash) == static_cast<size_t>(s)) insert(shard, r);
+    std::vector<const L1CacheRecord*> records;
+    for (size_t b = 0; b < batches.size(); ++b)
+      for (uint32_t j = starts[b][static_cast<size_t>(s)]; j < starts[b][static_cast<size_t>(s) + 1]; ++j)
+        records.push_back(&batches[b][by_shard[b][j]]);
+    constexpr size_t kAhead = 8;  // the slot loads in flight: enough to cover a miss to memory
+    for (size_t i = 0; i < records.size(); ++i) {
+      if (i + kAhead < records.size() && !shard.cells.empty())
+        __builtin_prefetch(&shard.cells[records[i + kAhead]->hash & (shard.cells.size() - 1)], 1);
+      insert(shard, *records[i]);
+    }
   });
 }
 
