@@ -320,5 +320,31 @@ TEST(L1CacheRender, BitIdenticalForAnyThreadCountAcrossAGeneration) {
   }
 }
 
+TEST(L1CacheRender, ABounceHitThatFindsNoReadyCellFillsItWithTheFillRays) {
+  // The first frame reads an empty store, so every bounce hit traces its L1(q) anew: each adds kL1CacheFillRays
+  // samples to its cell (two of them make it ready), beside the l1_rays of each pixel's own estimate.
+  const auto traced = prepare_scene(test::make_closed_emitting_box(1.0f, Vec3(0.5f), Vec3(1.0f)));
+  RenderSettings settings;
+  settings.width = settings.height = 16;
+  settings.l1_rays = 4;  // its recompute ratio's share would be 1 ray
+  settings.l2_rays = 8;
+  settings.reuse = ReuseMode::kCache;
+  const Camera camera =
+      make_camera(CameraSpec{Vec3(0.1f, 0.2f, 0.0f), Vec3(-1, -0.5f, -0.3f), Vec3(0, 1, 0), 90.0f}, 16, 16);
+  Film film;
+  film.reset(settings);
+  ThreadPool pool(2);
+  const FrameResult first = render_frame(*traced, camera, settings, film, pool);
+  EXPECT_EQ(first.l2_cached, 0u);
+  ASSERT_GT(first.l2_bounce_hits, 0u);
+  const uint64_t pixels = 16 * 16;  // inside the box every primary ray hits a wall
+  EXPECT_EQ(film.l1_cache.samples_held(),
+            pixels * 4 + first.l2_bounce_hits * static_cast<uint64_t>(kL1CacheFillRays));
+  EXPECT_EQ(film.l1_cache.stats().refused, 0u);
+  // Two fills make a cell ready: the next frame's bounce hits are mostly served.
+  const FrameResult second = render_frame(*traced, camera, settings, film, pool);
+  EXPECT_GT(second.l2_cached, second.l2_bounce_hits / 2);
+}
+
 }  // namespace
 }  // namespace lueur

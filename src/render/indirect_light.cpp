@@ -235,6 +235,12 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
     recompute.camera_light = &head_light;
   }
 
+  // With the store, an L1(q) traced anew also fills q's cell, with kL1CacheFillRays rays. Each bounce's shadow rays
+  // are its own run of the recompute sampler's samples, as long as the longest estimate a bounce hit may trace.
+  DirectLightOptions fill = recompute;
+  if (cache) fill.rays = kL1CacheFillRays;
+  const int shadow_run = std::max(recompute.rays, fill.rays);
+
   BounceDirections directions(sp);
   const bool reuse = uses_screen(settings.reuse);
   for (int batch_start = 0; batch_start < settings.l2_rays; batch_start += kSampleBatch) {
@@ -282,7 +288,7 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
     for (size_t k = 0; k < static_cast<size_t>(pending_count); ++k) {
       PendingBounce& b = pending.items[k];
       ++result.bounce_hits;
-      const uint64_t first_shadow_sample = first_sample_of_run(b.sample, recompute.rays);
+      const uint64_t first_shadow_sample = first_sample_of_run(b.sample, shadow_run);
       Vec3 l1_q(0.0f);
       bool reused = false;
       const bool cached = cache && l1_from_ready_cell(traced, b, settings, recompute, *cache, recompute_sampler,
@@ -320,23 +326,23 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
     }
 
     if (traced_anew_count > 0) {
-      // Their L1 with `recompute`'s rays, the samples of several bounce hits sharing a batch's lanes; with the store,
-      // each also becomes a record for it, in the order of the bounces.
+      // Their L1 with `fill`'s rays, the samples of several bounce hits sharing a batch's lanes; with the store, each
+      // also becomes a record for it, in the order of the bounces.
       std::array<const SurfacePoint*, kSampleBatch> points;
       std::array<uint64_t, kSampleBatch> first_samples;
       std::array<Vec3, kSampleBatch> l1, arriving;
       for (size_t j = 0; j < traced_anew_count; ++j) {
         PendingBounce& b = pending.items[traced_anew[j]];
         points[j] = &surface_of(scene, b);
-        first_samples[j] = first_sample_of_run(b.sample, recompute.rays);
+        first_samples[j] = first_sample_of_run(b.sample, shadow_run);
       }
-      estimate_direct_light_at_points(traced, points.data(), first_samples.data(), traced_anew_count, recompute,
+      estimate_direct_light_at_points(traced, points.data(), first_samples.data(), traced_anew_count, fill,
                                       recompute_sampler, rays_traced, l1.data(), cache ? arriving.data() : nullptr);
       for (size_t j = 0; j < traced_anew_count; ++j) {
         const PendingBounce& b = pending.items[traced_anew[j]];
         if (cache)
           cache->records->push_back(
-              make_l1_record(b.key, b.hash, arriving[j], static_cast<uint32_t>(std::max(recompute.rays, 0))));
+              make_l1_record(b.key, b.hash, arriving[j], static_cast<uint32_t>(std::max(fill.rays, 0))));
         result.from_recomputed += bounce_contribution(material, sp, b.ray.dir, settings.blinn_k, l1[j]);
       }
     }

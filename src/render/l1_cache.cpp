@@ -216,4 +216,11 @@ L1CacheStats L1Cache::stats() const {
   return st;
 }
 
+uint64_t L1Cache::samples_held() const {
+  uint64_t samples = 0;
+  for (const Shard& s : shards_)
+    for (const L1CacheCell& cell : s.cells) samples += cell.samples;
+  return samples;
+}
+
 }  // namespace lueur

@@ -45,7 +45,10 @@ std::vector<Row> make_rows() {
       "world-space L1 store, or the store where its cell is ready and the screen where not",
       E::kRestart, kReuseModeNames, [](auto& s) -> auto& { return s.render.reuse; }));
   table.push_back(real_row(
-      "recompute-ratio", "share of the L1 rays that recompute L1 where it cannot be reused", E::kRestart,
+      "recompute-ratio",
+      "share of the L1 rays that recompute L1 where it cannot be reused (the store modes recompute with 16, which "
+      "fill the store's cell)",
+      E::kRestart,
       [](auto& s) -> auto& { return s.render.recompute_ratio; }, {0, 16}, SettingRange{0, 1}));
   table.push_back(switch_row(
       "reuse-diffuse-only", "reuse only the view-independent part of L1 (no bias on glossy surfaces)", E::kRestart,
