@@ -137,6 +137,31 @@ TEST(L1CacheTable, StopsTakingNewCellsAtItsCapAndSaysSo) {
   EXPECT_EQ(cache.stats().cells, 0u);
 }
 
+TEST(L1CacheTable, SaysBeforehandWhichNewCellsItWouldRefuse) {
+  L1Cache cache;
+  cache.reset(64 * 1024);  // 128 slots per shard at most
+  ThreadPool pool(1);
+  const auto merge_one = [&](int x) {
+    L1CacheKey key;
+    key.x = x;
+    const L1CacheRecord record = record_of(key, 1.0f, 1);
+    const bool predicted = cache.refuses_new_cell(record.hash);
+    const uint64_t refused_before = cache.stats().refused;
+    cache.merge({{record}}, pool);
+    return std::pair{predicted, cache.stats().refused > refused_before};
+  };
+  int refusals = 0, acceptances = 0;
+  for (int x = 0; x < 3000; ++x) {
+    const auto [predicted, refused] = merge_one(x);
+    ASSERT_EQ(predicted, refused) << "cell " << x;
+    (refused ? refusals : acceptances) += 1;
+  }
+  EXPECT_GT(refusals, 0);  // both answers were checked
+  EXPECT_GT(acceptances, 0);
+  cache.reset(0);
+  EXPECT_TRUE(cache.refuses_new_cell(hash_of(L1CacheKey{})));
+}
+
 /// The store fed, frame after frame, by jittered samples of a light that steps from 0 to 1 across x = 0 on the plane
 /// z = 0 (a hard shadow edge), and looked up just on the dark side: what a look-up there gives, averaged over the
 /// frames 0..n-1 for every n up to `frames` (each frame reading the store as the frames before it left it, as the
@@ -344,6 +369,40 @@ TEST(L1CacheRender, ABounceHitThatFindsNoReadyCellFillsItWithTheFillRays) {
   // Two fills make a cell ready: the next frame's bounce hits are mostly served.
   const FrameResult second = render_frame(*traced, camera, settings, film, pool);
   EXPECT_GT(second.l2_cached, second.l2_bounce_hits / 2);
+}
+
+TEST(L1CacheRender, ABounceHitWhoseCellTheFullStoreWouldRefuseTracesOnlyTheRecomputeRays) {
+  // A store with no room refuses every cell, so no fill would be kept: each bounce hit then traces the recompute
+  // ratio's share, as `--reuse off` does, rather than kL1CacheFillRays for nothing.
+  const auto traced = prepare_scene(test::make_closed_emitting_box(1.0f, Vec3(0.5f), Vec3(1.0f)));
+  RenderSettings settings;
+  settings.width = settings.height = 16;
+  settings.l1_rays = 8;  // the recompute ratio's share: 1 ray
+  settings.l2_rays = 8;
+  const Camera camera =
+      make_camera(CameraSpec{Vec3(0.1f, 0.2f, 0.0f), Vec3(-1, -0.5f, -0.3f), Vec3(0, 1, 0), 90.0f}, 16, 16);
+  ThreadPool pool(2);
+  uint64_t bounce_hits = 0;
+  const auto rays_of_first_frame = [&](ReuseMode reuse, bool no_room) {
+    settings.reuse = reuse;
+    Film film;
+    film.reset(settings);
+    if (no_room) film.l1_cache.reset(0);
+    const FrameResult frame = render_frame(*traced, camera, settings, film, pool);
+    bounce_hits = frame.l2_bounce_hits;
+    if (no_room) {
+      EXPECT_EQ(film.l1_cache.samples_held(), 0u);
+    }
+    return frame.rays;
+  };
+  const uint64_t off = rays_of_first_frame(ReuseMode::kOff, false);
+  const uint64_t no_room = rays_of_first_frame(ReuseMode::kCache, true);
+  ASSERT_GT(bounce_hits, 100u);
+  // A shadow sample that cannot reach its light is not traced, and the two modes draw other samples (their runs
+  // differ), so the counts can differ by a few: but by less than a ray per bounce hit, where a fill costs 16.
+  EXPECT_LE(no_room, off + bounce_hits);
+  EXPECT_GE(no_room + bounce_hits, off);
+  EXPECT_GT(rays_of_first_frame(ReuseMode::kCache, false), off + 8 * bounce_hits);
 }
 
 }  // namespace

@@ -28,6 +28,7 @@ struct PendingBounce {
   L1CacheKey key;        ///< with the L1 store: q's jittered cell (key_for_store), whose slot is being loaded
   uint64_t hash = 0;
   Vec3 facing{0.0f};  ///< q's unit geometric normal on the side the ray came from (set with the key)
+  bool fills_store = false;  ///< with the store, where no ready cell served q: an L1(q) traced anew becomes a record
 };
 
 /// q's full surface point, made once.
@@ -171,7 +172,11 @@ bool l1_from_ready_cell(const TracedScene& traced, PendingBounce& b, const Rende
                         const DirectLightOptions& recompute, const L1CacheAccess& cache, PixelSampler& sampler,
                         uint64_t first_shadow_sample, uint64_t& rays_traced, Vec3& l1_q) {
   const L1CacheCell* cell = cache.store->find(b.key, b.hash);
-  if (!cell || cell->samples < kL1CacheMinSamples) return false;
+  if (!cell || cell->samples < kL1CacheMinSamples) {
+    // A cell that is there grows; a missing one is made at the frame's end unless the store is full there.
+    b.fills_store = cell || !cache.store->refuses_new_cell(b.hash);
+    return false;
+  }
   const Vec3 arriving = cell->sum / static_cast<float>(cell->samples);
   const Material& mq = traced.scene.material_of(b.hit.triangle);
   // brdf_is_constant reads q's shading normal (turned to the side the ray came from, as make_surface_point turns
@@ -235,7 +240,8 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
     recompute.camera_light = &head_light;
   }
 
-  // With the store, an L1(q) traced anew also fills q's cell, with kL1CacheFillRays rays. Each bounce's shadow rays
+  // With the store, an L1(q) traced anew also fills q's cell, with kL1CacheFillRays rays (with the recompute share
+  // where the store is full and would refuse the cell: there the fill would buy nothing). Each bounce's shadow rays
   // are its own run of the recompute sampler's samples, as long as the longest estimate a bounce hit may trace.
   DirectLightOptions fill = recompute;
   if (cache) fill.rays = kL1CacheFillRays;
@@ -267,6 +273,7 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
       b.sample = first_sample + static_cast<uint64_t>(batch_start) + k;
       b.has_surface = false;  // the rest is written only when set
       b.pixel = -1;
+      b.fills_store = false;
       if (cache) {
         // The store is asked first (where it has a ready cell, its L1 has hundreds of samples and the least bias);
         // the screen, if at all, only where it has not.
@@ -326,21 +333,33 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
     }
 
     if (traced_anew_count > 0) {
-      // Their L1 with `fill`'s rays, the samples of several bounce hits sharing a batch's lanes; with the store, each
-      // also becomes a record for it, in the order of the bounces.
+      // Their L1, the samples of several bounce hits sharing a batch's lanes: with `fill`'s rays where the result
+      // goes to the store (a record for it, in the order of the bounces), with `recompute`'s elsewhere.
       std::array<const SurfacePoint*, kSampleBatch> points;
       std::array<uint64_t, kSampleBatch> first_samples;
-      std::array<Vec3, kSampleBatch> l1, arriving;
+      std::array<size_t, kSampleBatch> order;  // the fills first, then the rest, each in the order of the bounces
+      size_t fill_count = 0;
+      for (size_t j = 0; j < traced_anew_count; ++j)
+        if (pending.items[traced_anew[j]].fills_store) order[fill_count++] = traced_anew[j];
+      size_t n = fill_count;
+      for (size_t j = 0; j < traced_anew_count; ++j)
+        if (!pending.items[traced_anew[j]].fills_store) order[n++] = traced_anew[j];
       for (size_t j = 0; j < traced_anew_count; ++j) {
-        PendingBounce& b = pending.items[traced_anew[j]];
+        PendingBounce& b = pending.items[order[j]];
         points[j] = &surface_of(scene, b);
         first_samples[j] = first_sample_of_run(b.sample, shadow_run);
       }
-      estimate_direct_light_at_points(traced, points.data(), first_samples.data(), traced_anew_count, fill,
-                                      recompute_sampler, rays_traced, l1.data(), cache ? arriving.data() : nullptr);
+      std::array<Vec3, kSampleBatch> l1, arriving;
+      if (fill_count > 0)
+        estimate_direct_light_at_points(traced, points.data(), first_samples.data(), fill_count, fill,
+                                        recompute_sampler, rays_traced, l1.data(), arriving.data());
+      if (traced_anew_count > fill_count)
+        estimate_direct_light_at_points(traced, points.data() + fill_count, first_samples.data() + fill_count,
+                                        traced_anew_count - fill_count, recompute, recompute_sampler, rays_traced,
+                                        l1.data() + fill_count);
       for (size_t j = 0; j < traced_anew_count; ++j) {
-        const PendingBounce& b = pending.items[traced_anew[j]];
-        if (cache)
+        const PendingBounce& b = pending.items[order[j]];
+        if (j < fill_count)
           cache->records->push_back(
               make_l1_record(b.key, b.hash, arriving[j], static_cast<uint32_t>(std::max(fill.rays, 0))));
         result.from_recomputed += bounce_contribution(material, sp, b.ray.dir, settings.blinn_k, l1[j]);

@@ -52,7 +52,8 @@ int find_reusable_pixel(const Camera& camera, const ScreenBuffer& screen, uint32
 /// not added: it is already L1 at p. With `cache` (the store modes), a hit the screen did not serve looks up its
 /// jittered cell: a cell with kL1CacheMinSamples samples gives the constant part of L1(q) (the rest of the BRDF is
 /// traced toward p, as --reuse-diffuse-only does); otherwise L1(q) is recomputed with kL1CacheFillRays rays and its
-/// arriving light becomes a record for the store (bounce b's shadow rays are then its samples b x
+/// arriving light becomes a record for the store, or, where the cell is missing and the store full there
+/// (L1Cache::refuses_new_cell), with recompute_rays and no record (bounce b's shadow rays are its samples b x
 /// max(recompute_rays, kL1CacheFillRays) onwards).
 IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& camera, const ScreenBuffer& screen,
                                        const SurfacePoint& sp, const RenderSettings& settings,

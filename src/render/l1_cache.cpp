@@ -173,6 +173,15 @@ void L1Cache::insert(Shard& shard, const L1CacheRecord& record) {
   ++shard.used;
 }
 
+bool L1Cache::refuses_new_cell(uint64_t hash) const {
+  if (max_cells_per_shard_ == 0) return true;
+  const Shard& shard = shards_[shard_of(hash)];
+  // insert() gives an empty shard its first slots, and grows one that a new cell would bring over its load unless
+  // growing would pass the cap.
+  const size_t capacity = shard.cells.empty() ? std::min(kFirstShardCells, max_cells_per_shard_) : shard.cells.size();
+  return over_load(shard.used + 1, capacity) && capacity * 2 > max_cells_per_shard_;
+}
+
 void L1Cache::merge(const std::vector<std::vector<L1CacheRecord>>& batches, ThreadPool& pool) {
   // First each batch's records listed by shard (batches in parallel), so that a shard's task reads only its own
   // records, in the order the batches hold them, and can start loading the slot of a record a few ahead.

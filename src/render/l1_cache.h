@@ -153,6 +153,11 @@ class L1Cache {
   static size_t shard_of(uint64_t hash) { return static_cast<size_t>(hash >> 60); }
   static_assert(kShards == 16);
 
+  /// Whether a record of a cell not yet in the store, with this hash, would be refused: its shard is as large as the
+  /// cap allows and too full to take one more. (A bounce hit whose cell is missing then traces no fill: its record
+  /// would be dropped.)
+  bool refuses_new_cell(uint64_t hash) const;
+
   /// Adds the records, batch after batch and each batch in order; one shard per task on `pool`.
   void merge(const std::vector<std::vector<L1CacheRecord>>& batches, ThreadPool& pool);
 

@@ -47,7 +47,7 @@ std::vector<Row> make_rows() {
   table.push_back(real_row(
       "recompute-ratio",
       "share of the L1 rays that recompute L1 where it cannot be reused (the store modes recompute with 16, which "
-      "fill the store's cell)",
+      "fill the store's cell, where the store has room for it)",
       E::kRestart,
       [](auto& s) -> auto& { return s.render.recompute_ratio; }, {0, 16}, SettingRange{0, 1}));
   table.push_back(switch_row(
