@@ -159,12 +159,12 @@ void L1Cache::insert(Shard& shard, const L1CacheRecord& record) {
       return;
     }
   }
-  // A new cell: grow first if the shard is getting full, or refuse it once the shard is as large as the cap allows.
+  // A new cell: refused once the shard is full and as large as the cap allows, else grow first if it is getting full.
+  if (refuses_new_cell_in(shard)) {
+    ++shard.refused;
+    return;
+  }
   if (over_load(shard.used + 1, shard.cells.size())) {
-    if (shard.cells.size() * 2 > max_cells_per_shard_) {
-      ++shard.refused;
-      return;
-    }
     rehash(shard, shard.cells.size() * 2);
     mask = shard.cells.size() - 1;
     for (slot = record.hash & mask; shard.cells[slot].samples != 0;) slot = (slot + 1) & mask;
@@ -173,14 +173,15 @@ void L1Cache::insert(Shard& shard, const L1CacheRecord& record) {
   ++shard.used;
 }
 
-bool L1Cache::refuses_new_cell(uint64_t hash) const {
+bool L1Cache::refuses_new_cell_in(const Shard& shard) const {
   if (max_cells_per_shard_ == 0) return true;
-  const Shard& shard = shards_[shard_of(hash)];
-  // insert() gives an empty shard its first slots, and grows one that a new cell would bring over its load unless
-  // growing would pass the cap.
+  // An empty shard gets its first slots before its first cell; one that a new cell would bring over its load grows,
+  // unless growing would pass the cap.
   const size_t capacity = shard.cells.empty() ? std::min(kFirstShardCells, max_cells_per_shard_) : shard.cells.size();
   return over_load(shard.used + 1, capacity) && capacity * 2 > max_cells_per_shard_;
 }
+
+bool L1Cache::refuses_new_cell(uint64_t hash) const { return refuses_new_cell_in(shards_[shard_of(hash)]); }
 
 void L1Cache::merge(const std::vector<std::vector<L1CacheRecord>>& batches, ThreadPool& pool) {
   // First each batch's records listed by shard (batches in parallel), so that a shard's task reads only its own

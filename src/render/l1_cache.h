@@ -177,6 +177,8 @@ class L1Cache {
     uint64_t refused = 0;
   };
   void insert(Shard& shard, const L1CacheRecord& record);
+  /// The one rule by which insert() refuses a new cell, and refuses_new_cell() foretells it.
+  bool refuses_new_cell_in(const Shard& shard) const;
   static void rehash(Shard& shard, size_t capacity);
 
   std::array<Shard, kShards> shards_;
