@@ -79,17 +79,22 @@ L1CacheGrid make_l1_cache_grid(const Camera& camera, const Vec3& lower, float di
 L1CacheKey jittered_key(const L1CacheGrid& grid, const Vec3& position, const Vec3& normal, float u1, float u2);
 
 /// A cell serves look-ups once it holds this many samples of arriving light (below, L1 is traced and added to it).
-/// On the default scene at 48 frames L2's error was flat from 16 to 32 samples, 2% higher at 64 and 20% at 256.
-inline constexpr uint32_t kL1CacheMinSamples = 32;
+/// Chosen with the cell size (settings.h, cache_cell_pixels 2): most of the store's error was its cells' bias, not
+/// their noise, so smaller cells that fill sooner pay. Conference room, 128x128, 160 frames, `cache`, L2 against a
+/// 2048-frame `off` render, split into bias and noise by two seeds: cells of 4 pixels and 32 samples, squared error
+/// 3.10e-7 (bias 1.06e-7); 2 pixels and 32 samples 2.42e-7 (0.41e-7) at 1.05x the time; 2 pixels and 16 samples
+/// 2.54e-7 (0.46e-7) at about the same time as 4 and 32; on the default scene 5.05e-7 against 3.74e-7 for the last.
+inline constexpr uint32_t kL1CacheMinSamples = 16;
 
 /// The shadow rays of an L1(q) traced at a bounce hit whose cell is not ready (in the store modes, instead of the
-/// recompute ratio's share): two such estimates make the cell ready. At the ratio's 2 rays a cell took 16 hits to
-/// fill, each paying a recomputation and taking its noisier L1; the rays a cell gathers before it serves are the
+/// recompute ratio's share): two such estimates make the cell ready. At the ratio's 2 rays a cell would take 8 hits
+/// to fill, each paying a recomputation and taking its noisier L1; the rays a cell gathers before it serves are the
 /// same, spent in fewer hits, so more of the hits after them are served. Measured on the conference room (128x128,
-/// 160 frames, `screen+cache`): the store served 80% of the bounce hits with 2 rays, 87% with 4, 91% with 8, 94%
-/// with 16 and 95% with 32; L2's error fell from 1.09x `frame`'s to 1.06x, 1.04x, 1.01x and 0.99x, and the frames
-/// were 7% faster with 16 than with 2. A frame that starts a generation (an empty store) costs more: about 2.5x a
-/// steady frame there, against 1.6x with 2 rays.
+/// 160 frames, `screen+cache`, cells of 4 pixels serving from 32 samples): the store served 80% of the bounce hits
+/// with fills of 2 rays, 87% with 4, 91% with 8, 94% with 16 and 95% with 32; L2's error fell from 1.09x `frame`'s
+/// to 1.06x, 1.04x, 1.01x and 0.99x, and the frames were 7% faster with 16 than with 2. (Cells of 2 pixels serving
+/// from 16 samples: squared error 2.54e-7 with fills of 8 rays, 2.49e-7 with 16 at 1.03x the time, 2.74e-7 with 4
+/// serving from 8.)
 inline constexpr int kL1CacheFillRays = static_cast<int>(kL1CacheMinSamples) / 2;
 
 /// The normal's dominant axis and sign, 0..5: surfaces that face apart (the two sides of a wall; a floor and the wall

@@ -82,7 +82,8 @@ struct RenderSettings {
   float recompute_ratio = 0.125f;   ///< L1(q) is recomputed with this share of l1_rays (at least one ray)
   bool reuse_diffuse_only = false;  ///< reuse only the view-independent part of L1; recompute the rest
   bool camera_light = false;  ///< the head-light (camera_light.h) lights what the camera sees, besides the emitters
-  float cache_cell_pixels = 4.0f;  ///< the L1 store's cells span about this many pixels at first (then shrink)
+  float cache_cell_pixels = 2.0f;  ///< the L1 store's cells span about this many pixels at first (then shrink;
+                                   ///< kL1CacheMinSamples says why 2)
   int cache_mb = 256;              ///< the L1 store's memory cap, in MiB
   int ao_rays = 16;
   float ao_radius = 0.0f;  ///< world units; 0 or less: a tenth of the scene's bounding-box diagonal
