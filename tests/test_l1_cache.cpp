@@ -302,7 +302,6 @@ TEST(L1CacheConsistency, ARenderedHardShadowsBiasAfterNFramesIsBelowItsBiasAfter
   EXPECT_LT(after_16, after_4);
   EXPECT_LT(after_64, after_16);
   EXPECT_LT(after_256, after_64);
-  // Over two generations (frames 4-31 and 32-255) the cells shrink 4x: the image's bias falls by well over a third.
   // The image's bias goes to zero because each generation's cells lend half the light of the last one's: late in a
   // generation (once most of its cells are ready) the light lent per frame, with cells half as wide, is at most 0.6x
   // that late in the previous one (0.5x for a bias in proportion to the cell size; 1x for cells that do not shrink).
