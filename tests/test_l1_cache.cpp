@@ -80,6 +80,21 @@ TEST(L1CacheKeys, CellsCoverAboutTheSamePixelsEverywhereAndHalvePerGeneration) {
   EXPECT_EQ(l1_cache_generation(256), 3);
 }
 
+TEST(L1CacheKeys, TheAutomaticCellSizeGrowsAsTheSquareRootOfTheImageHeight) {
+  RenderSettings settings;
+  EXPECT_EQ(settings.cache_cell_pixels, 0.0f);  // automatic by default
+  settings.height = 128;
+  EXPECT_FLOAT_EQ(settings.cache_cell_pixels_in_use(), 2.0f);
+  settings.height = 512;
+  EXPECT_FLOAT_EQ(settings.cache_cell_pixels_in_use(), 4.0f);
+  settings.height = 256;
+  EXPECT_NEAR(settings.cache_cell_pixels_in_use(), 2.0f * std::sqrt(2.0f), 1e-5f);
+  settings.cache_cell_pixels = 3.0f;  // a size given is the size used, at any height
+  EXPECT_EQ(settings.cache_cell_pixels_in_use(), 3.0f);
+  settings.height = 2048;
+  EXPECT_EQ(settings.cache_cell_pixels_in_use(), 3.0f);
+}
+
 /// Key number i of 3000 distinct ones, spread over positions and normal buckets.
 L1CacheKey numbered_key(int i) {
   L1CacheKey key;
@@ -281,7 +296,7 @@ std::vector<double> dark_side_bias_of_render(int frames, double& lit_side) {
   for (int f = 0; f < frames; ++f) {
     const int generation = l1_cache_generation(static_cast<uint64_t>(f));
     const L1CacheGrid grid =
-        make_l1_cache_grid(camera, traced->lower, traced->diagonal, settings.cache_cell_pixels, generation);
+        make_l1_cache_grid(camera, traced->lower, traced->diagonal, settings.cache_cell_pixels_in_use(), generation);
     // The frame starts a new generation with an empty store: its look-ups then all recompute.
     if (film.l1_cache.generation == generation) total += probe(grid, -1.0f);
     running.push_back(total / (f + 1));
@@ -363,6 +378,7 @@ TEST(L1CacheRender, ABounceHitThatFindsNoReadyCellFillsItWithTheFillRays) {
   settings.l1_rays = 4;  // its recompute ratio's share would be 1 ray
   settings.l2_rays = 8;
   settings.reuse = ReuseMode::kCache;
+  settings.cache_cell_pixels = 2.0f;  // not the automatic 0.7 pixels of a 16-line image: cells most hits share
   const Camera camera =
       make_camera(CameraSpec{Vec3(0.1f, 0.2f, 0.0f), Vec3(-1, -0.5f, -0.3f), Vec3(0, 1, 0), 90.0f}, 16, 16);
   Film film;

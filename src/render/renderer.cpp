@@ -248,7 +248,7 @@ FrameResult render_frame(const TracedScene& traced, const Camera& camera, const 
       film.l1_cache.clear();
       film.l1_cache.generation = generation;
     }
-    grid = make_l1_cache_grid(camera, traced.lower, traced.diagonal, settings.cache_cell_pixels, generation);
+    grid = make_l1_cache_grid(camera, traced.lower, traced.diagonal, settings.cache_cell_pixels_in_use(), generation);
   }
   const auto tile_records = [&](int phase, int x, int y) {
     return &records[static_cast<size_t>(phase * tiles + tile_of(x, y, width))];

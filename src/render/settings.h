@@ -82,8 +82,8 @@ struct RenderSettings {
   float recompute_ratio = 0.125f;   ///< L1(q) is recomputed with this share of l1_rays (at least one ray)
   bool reuse_diffuse_only = false;  ///< reuse only the view-independent part of L1; recompute the rest
   bool camera_light = false;  ///< the head-light (camera_light.h) lights what the camera sees, besides the emitters
-  float cache_cell_pixels = 2.0f;  ///< the L1 store's cells span about this many pixels at first (then shrink;
-                                   ///< kL1CacheMinSamples says why 2)
+  float cache_cell_pixels = 0.0f;  ///< the L1 store's cells span about this many pixels at first (then shrink);
+                                   ///< 0 or less: automatic (cache_cell_pixels_in_use)
   int cache_mb = 256;              ///< the L1 store's memory cap, in MiB
   int ao_rays = 16;
   float ao_radius = 0.0f;  ///< world units; 0 or less: a tenth of the scene's bounding-box diagonal
@@ -95,6 +95,17 @@ struct RenderSettings {
   /// Shadow rays for a recomputed L1(q).
   int recompute_rays() const {
     return std::max(1, static_cast<int>(std::lround(recompute_ratio * static_cast<float>(l1_rays))));
+  }
+  /// The L1 store's cell size in pixels: cache_cell_pixels, or where that is 0, 2 x sqrt(height / 128) (2 pixels at
+  /// 128 lines, 4 at 512). Why the square root: a cell's blur is its size in the world, which falls as 1 / height
+  /// for a given number of pixels, while what it costs to fill, per sample the frame gathers, does not depend on the
+  /// height; the sum of a squared bias ~ (c / height)^2 and a cost ~ 1 / c^2 is least at c ~ sqrt(height). Measured
+  /// (`screen+cache`, L2 against long `off` renders): 2 pixels best at 128x128 on both benchmark scenes, 2.83 the only
+  /// size that kept the conference room's image ahead of `frame`'s at 256x256, and 4 or 8 better than 2 at 512x512
+  /// on the default scene (BENCHMARKS.md).
+  float cache_cell_pixels_in_use() const {
+    if (cache_cell_pixels > 0.0f) return cache_cell_pixels;
+    return 2.0f * std::sqrt(static_cast<float>(std::max(height, 1)) / 128.0f);
   }
 };
 

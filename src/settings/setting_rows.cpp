@@ -55,8 +55,9 @@ std::vector<Row> make_rows() {
       [](auto& s) -> auto& { return s.render.reuse_diffuse_only; }, true));
   Row cache_cells = real_row(
       "cache-cell-pixels",
-      "the L1 store's cell size in pixels at the cell's distance, for the first 4 frames (halved per 8x frames)",
-      E::kRestart, [](auto& s) -> auto& { return s.render.cache_cell_pixels; }, {0.25, 1024}, SettingRange{1, 32});
+      "the L1 store's cell size in pixels at the cell's distance, for the first 4 frames (halved per 8x frames); 0: "
+      "automatic, 2 x sqrt(image height / 128) (2 at 128 lines, 4 at 512)",
+      E::kRestart, [](auto& s) -> auto& { return s.render.cache_cell_pixels; }, {0, 1024}, SettingRange{1, 32});
   cache_cells.always_described = false;
   table.push_back(cache_cells);
   Row cache_mb = integer_row(

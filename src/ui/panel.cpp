@@ -114,6 +114,25 @@ void ao_radius_widgets(PanelModel& m) {
   r.ao_radius = std::min(r.ao_radius, static_cast<float>(setting_info("ao-radius").range->max));
 }
 
+/// The store's cell size: automatic (the setting 0, shown as the size it stands for at this image height) or set.
+void cache_cell_widgets(PanelModel& m) {
+  RenderSettings& r = m.settings.render;
+  bool automatic = r.cache_cell_pixels <= 0.0f;
+  if (ImGui::Checkbox("Automatic store cell", &automatic)) {
+    RenderSettings automatic_settings = r;
+    automatic_settings.cache_cell_pixels = 0.0f;
+    r.cache_cell_pixels = automatic ? 0.0f : automatic_settings.cache_cell_pixels_in_use();
+  }
+  record_widget(m, "cache-cell-automatic");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("2 x sqrt(image height / 128) pixels: 2 at 128 lines, 4 at 512");
+  if (automatic) {
+    ImGui::Text("Store cell %.2f px (automatic)", r.cache_cell_pixels_in_use());
+    return;
+  }
+  setting_slider("Store cell (px)", "cache-cell-pixels", r.cache_cell_pixels, "%.1f");
+  if (!(r.cache_cell_pixels > 0.0f)) r.cache_cell_pixels = 0.0f;  // 0 or less: back to automatic
+}
+
 void sampling_section(PanelModel& m) {
   Settings& v = m.settings;
   RenderSettings& r = v.render;
@@ -131,7 +150,7 @@ void sampling_section(PanelModel& m) {
   ImGui::Checkbox("Reuse diffuse L1 only", &r.reuse_diffuse_only);
   setting_tooltip("reuse-diffuse-only");
   if (uses_cache(r.reuse)) {
-    setting_slider("Store cell (px)", "cache-cell-pixels", r.cache_cell_pixels, "%.1f");
+    cache_cell_widgets(m);
     setting_slider("Store cap (MiB)", "cache-mb", r.cache_mb);
   }
   setting_slider("AO rays", "ao-rays", r.ao_rays);
