@@ -80,10 +80,11 @@ L1CacheKey jittered_key(const L1CacheGrid& grid, const Vec3& position, const Vec
 
 /// A cell serves look-ups once it holds this many samples of arriving light (below, L1 is traced and added to it).
 /// Chosen with cells of 2 pixels (the automatic size at 128 lines, settings.h): most of the store's error was its
-/// cells' bias, not their noise, so smaller cells that fill sooner pay. Conference room, 128x128, 160 frames, `cache`, L2 against a
-/// 2048-frame `off` render, split into bias and noise by two seeds: cells of 4 pixels and 32 samples, squared error
-/// 3.10e-7 (bias 1.06e-7); 2 pixels and 32 samples 2.42e-7 (0.41e-7) at 1.05x the time; 2 pixels and 16 samples
-/// 2.54e-7 (0.46e-7) at about the same time as 4 and 32; on the default scene 5.05e-7 against 3.74e-7 for the last.
+/// cells' bias, not their noise, so smaller cells that fill sooner pay. Conference room, 128x128, 160 frames,
+/// `cache`, L2 against a 2048-frame `off` render, split into bias and noise by two seeds: cells of 4 pixels and 32
+/// samples, squared error 3.10e-7 (bias 1.06e-7); 2 pixels and 32 samples 2.42e-7 (0.41e-7) at 1.05x the time;
+/// 2 pixels and 16 samples 2.54e-7 (0.46e-7) at about the same time as 4 and 32; on the default scene 5.05e-7 against
+/// 3.74e-7 for the last.
 inline constexpr uint32_t kL1CacheMinSamples = 16;
 
 /// The shadow rays of an L1(q) traced at a bounce hit whose cell is not ready (in the store modes, instead of the

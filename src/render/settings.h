@@ -96,15 +96,18 @@ struct RenderSettings {
   int recompute_rays() const {
     return std::max(1, static_cast<int>(std::lround(recompute_ratio * static_cast<float>(l1_rays))));
   }
-  /// The L1 store's cell size in pixels: cache_cell_pixels, or where that is 0, 2 x sqrt(height / 128) (2 pixels at
-  /// 128 lines, 4 at 512). Why the square root: a cell's blur is its size in the world, which falls as 1 / height
-  /// for a given number of pixels, while what it costs to fill, per sample the frame gathers, does not depend on the
-  /// height; the sum of a squared bias ~ (c / height)^2 and a cost ~ 1 / c^2 is least at c ~ sqrt(height). Measured
-  /// (`screen+cache`, L2 against long `off` renders): 2 pixels best at 128x128 on both benchmark scenes, 2.83 the only
-  /// size that kept the conference room's image ahead of `frame`'s at 256x256, and 4 or 8 better than 2 at 512x512
-  /// on the default scene (BENCHMARKS.md).
+  /// The L1 store's cell size in pixels: cache_cell_pixels, or where that is 0 the automatic size.
   float cache_cell_pixels_in_use() const {
-    if (cache_cell_pixels > 0.0f) return cache_cell_pixels;
+    return cache_cell_pixels > 0.0f ? cache_cell_pixels : automatic_cache_cell_pixels();
+  }
+  /// The automatic cell size: 2 x sqrt(height / 128) pixels (2 at 128 lines, 4 at 512). Why the square root: a
+  /// cell's blur is its size in the world, which falls as 1 / height for a given number of pixels, while what it
+  /// costs to fill, per sample the frame gathers, does not depend on the height; the sum of a squared bias
+  /// ~ (c / height)^2 and a cost ~ 1 / c^2 is least at c ~ sqrt(height). Measured (`screen+cache`, L2 against long
+  /// `off` renders): 2 pixels best at 128x128 on both benchmark scenes, 2.83 the only size that kept the conference
+  /// room's image ahead of `frame`'s at 256x256, and 4 or 8 better than 2 at 512x512 on the default scene
+  /// (BENCHMARKS.md).
+  float automatic_cache_cell_pixels() const {
     return 2.0f * std::sqrt(static_cast<float>(std::max(height, 1)) / 128.0f);
   }
 };

@@ -118,15 +118,12 @@ void ao_radius_widgets(PanelModel& m) {
 void cache_cell_widgets(PanelModel& m) {
   RenderSettings& r = m.settings.render;
   bool automatic = r.cache_cell_pixels <= 0.0f;
-  if (ImGui::Checkbox("Automatic store cell", &automatic)) {
-    RenderSettings automatic_settings = r;
-    automatic_settings.cache_cell_pixels = 0.0f;
-    r.cache_cell_pixels = automatic ? 0.0f : automatic_settings.cache_cell_pixels_in_use();
-  }
+  if (ImGui::Checkbox("Automatic store cell", &automatic))
+    r.cache_cell_pixels = automatic ? 0.0f : r.automatic_cache_cell_pixels();
   record_widget(m, "cache-cell-automatic");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("2 x sqrt(image height / 128) pixels: 2 at 128 lines, 4 at 512");
   if (automatic) {
-    ImGui::Text("Store cell %.2f px (automatic)", r.cache_cell_pixels_in_use());
+    ImGui::Text("Store cell %.2f px (automatic)", r.automatic_cache_cell_pixels());
     return;
   }
   setting_slider("Store cell (px)", "cache-cell-pixels", r.cache_cell_pixels, "%.1f");
