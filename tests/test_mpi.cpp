@@ -60,15 +60,16 @@ TEST(Mpi, SameBytesForOneToFourRanksAndTheSingleBinary) {
 
 TEST(Mpi, AKilledRankEndsTheJobCleanlyAndItsCheckpointResumesOnOtherRanks) {
   const std::string dir = make_temp_dir("mpi_kill");
-  const std::string base = "--headless --size 32x24 --frames 1500 --l1-rays 2 --l2-rays 2";
+  const std::string base = "--headless --size 32x24 --frames 3000 --l1-rays 2 --l2-rays 2";
   const std::string whole = dir + "/whole.pfm", part = dir + "/part.pfm", state = part + ".lueur-state";
   ASSERT_EQ(test::run_lueur(base + " --out " + shell_quote(whole)).exit_code, 0);
 
-  // Rank 1 is killed (SIGKILL) once the first checkpoint is written.
+  // Rank 1 is killed (SIGKILL) once the first checkpoint is written. 3000 frames keep the job running well past that
+  // on a fast machine; the wait gives up if the job ends without a checkpoint (the checks below then fail, no hang).
   const std::string script =
       mpirun(3, base + " --threads 1 --checkpoint 0.05 --out " + shell_quote(part)) + " & job=$!; " + "while [ ! -f " +
-      shell_quote(state) + " ]; do sleep 0.02; done; sleep 0.05; " + "for p in $(pgrep -f " + shell_quote(part) +
-      "); do " +
+      shell_quote(state) + " ] && kill -0 $job 2>/dev/null; do sleep 0.02; done; sleep 0.05; " +
+      "for p in $(pgrep -f " + shell_quote(part) + "); do " +
       "  if tr '\\0' '\\n' < /proc/$p/environ 2>/dev/null | grep -qx OMPI_COMM_WORLD_RANK=1; then kill -9 $p; fi; " +
       "done; wait $job";
   const auto killed = run_shell(script);
