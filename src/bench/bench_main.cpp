@@ -52,7 +52,7 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
   CLI::App app{"lueur-bench: Lueur's BVH against Embree on the same rays, and time to quality", "lueur-bench"};
   std::string sections;
   int reference_frames = 0, convergence_size = 0;
-  double convergence_seconds = 0.0, store_seconds = 0.0, store_reference_seconds = 0.0;
+  double convergence_seconds = 0.0, store_seconds = 0.0, store_reference_seconds = 0.0, store_turn_seconds = 0.0;
   int store_size = 0;
   app.add_flag("--quick", o.quick, "a reduced set that runs in under a minute");
   app.add_flag("--smoke", o.smoke, "a tiny run that only checks the plumbing (seconds; for the test suite)");
@@ -69,6 +69,9 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
       ->check(CLI::Range(0.001, 100000.0));
   app.add_option("--store-reference-seconds", store_reference_seconds,
                  "time of each reference in section store (default 240)")
+      ->check(CLI::Range(0.001, 100000.0));
+  app.add_option("--store-turn-seconds", store_turn_seconds,
+                 "the reuse modes of section store take turns of this long, each on its own frames' clock (default 2)")
       ->check(CLI::Range(0.001, 100000.0));
   app.add_option("--store-size", store_size, "image side in pixels in section store (default 256)")
       ->check(CLI::Range(8, 8192));
@@ -104,14 +107,14 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
     o.frame_seconds = 0.5;
     o.timing = {0.1, 3};
     o.convergence = {128, 128, 32, 1.5, 0, 1};
-    o.store = {128, 5.0, 20.0, 0};
+    o.store = {128, 5.0, 20.0, 1.0, 0};
   }
   if (o.smoke) {
     o.ray_size = 24;
     o.frame_seconds = 0.0;
     o.timing = {0.001, 1};
     o.convergence = {16, 16, 2, 0.001, 0, 1};
-    o.store = {16, 0.02, 0.05, 0};
+    o.store = {16, 0.02, 0.05, 0.01, 0};
     o.scenes_dir.clear();
   }
   if (o.rounds > 0) o.timing.rounds = o.rounds;
@@ -121,6 +124,7 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
   if (store_seconds > 0.0) o.store.seconds = store_seconds;
   if (store_reference_seconds > 0.0) o.store.reference_seconds = store_reference_seconds;
   if (store_size > 0) o.store.size = store_size;
+  if (store_turn_seconds > 0.0) o.store.turn_seconds = store_turn_seconds;
   if (!o.json_path.empty()) {
     std::filesystem::path dir = std::filesystem::path(o.json_path).parent_path();
     if (dir.empty()) dir = ".";

@@ -3,8 +3,8 @@
 // reference rendered with `off` (the unbiased estimator) and another seed. The image's RMSE is dominated by the few
 // pixels on the light's edge (on the default scene at 128x128, 10 pixels hold 60-70% of its squared error), whose Le
 // is the same frame for frame in every mode: its relMSE is the figure that compares modes. The time to reach `frame`'s
-// final L2 error is the first frame's time at which a mode's L2 error is at or below it, on the clock of its own run
-// (the error computations are taken out).
+// final L2 error is the first frame's time at which a mode's L2 error is at or below it, on the clock of its own
+// frames (the error computations and the other modes' turns are taken out: the modes take turns of a few seconds).
 #include "bench/bench_store.h"
 
 #include <chrono>
@@ -35,32 +35,55 @@ struct Run {
   L1CacheStats store;                                         ///< the store after the last frame
 };
 
-/// Frames of `settings` until `seconds` have passed, the errors after each one (when references are given).
-Run race(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, ThreadPool& pool,
-         double seconds, const Image* l2_reference, const Image* image_reference) {
+/// A mode's frames, timed one by one: `seconds` counts only its render_frame calls (not the error computations, nor
+/// the other modes' turns).
+struct Racer {
+  RenderSettings settings;
   Run run;
-  run.film.reset(settings);
-  const Clock::time_point start = Clock::now();
-  Clock::duration paused{0};
-  while (true) {
-    const FrameResult frame = render_frame(traced, camera, settings, run.film, pool);
-    run.bounce_hits += frame.l2_bounce_hits;
-    run.from_screen += frame.l2_reused;
-    run.from_store += frame.l2_cached;
-    run.store = frame.cache;
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start - paused).count();
-    if (l2_reference) {
-      const Clock::time_point pause = Clock::now();
-      const Image image = image_of(run.film, settings);
-      run.curve.push_back({elapsed, image_rmse(layer_average(run.film, Layer::kL2), *l2_reference),
-                           image_rmse(image, *image_reference), image_relmse(image, *image_reference)});
-      paused += Clock::now() - pause;
-    } else {
-      run.curve.push_back({elapsed, 0.0, 0.0, 0.0});
+  double seconds = 0.0;
+
+  explicit Racer(const RenderSettings& s) : settings(s) { run.film.reset(s); }
+
+  /// Frames until this racer's own clock passes `until` seconds, the errors after each one (when references are
+  /// given).
+  void render_until(const TracedScene& traced, const Camera& camera, ThreadPool& pool, double until,
+                    const Image* l2_reference, const Image* image_reference) {
+    while (seconds < until) {
+      const Clock::time_point start = Clock::now();
+      const FrameResult frame = render_frame(traced, camera, settings, run.film, pool);
+      seconds += std::chrono::duration<double>(Clock::now() - start).count();
+      run.bounce_hits += frame.l2_bounce_hits;
+      run.from_screen += frame.l2_reused;
+      run.from_store += frame.l2_cached;
+      run.store = frame.cache;
+      if (l2_reference) {
+        const Image image = image_of(run.film, settings);
+        run.curve.push_back({seconds, image_rmse(layer_average(run.film, Layer::kL2), *l2_reference),
+                             image_rmse(image, *image_reference), image_relmse(image, *image_reference)});
+      } else {
+        run.curve.push_back({seconds, 0.0, 0.0, 0.0});
+      }
     }
-    if (elapsed >= seconds) break;
   }
-  return run;
+};
+
+/// Every mode renders for `seconds` of its own frames' time, the modes taking turns of `turn` seconds each, so that
+/// a change in the host's speed (other tenants of a shared machine move it by 10-30% within minutes) falls on every
+/// mode alike rather than on whichever ran then.
+std::vector<Run> race(const TracedScene& traced, const Camera& camera, const std::vector<RenderSettings>& modes,
+                      ThreadPool& pool, double seconds, double turn, const Image* l2_reference,
+                      const Image* image_reference) {
+  std::vector<Racer> racers;
+  racers.reserve(modes.size());
+  for (const RenderSettings& s : modes) racers.emplace_back(s);
+  if (!(turn > 0.0)) turn = seconds;
+  for (double until = std::min(turn, seconds);; until = std::min(until + turn, seconds)) {
+    for (Racer& r : racers) r.render_until(traced, camera, pool, until, l2_reference, image_reference);
+    if (until >= seconds) break;
+  }
+  std::vector<Run> runs;
+  for (Racer& r : racers) runs.push_back(std::move(r.run));
+  return runs;
 }
 
 double share(uint64_t part, uint64_t whole) {
@@ -88,20 +111,24 @@ Json run_store_comparison(std::vector<BenchScene>& scenes, const StoreOptions& o
     RenderSettings reference_settings = base;
     reference_settings.reuse = ReuseMode::kOff;
     reference_settings.seed = 1000;
-    const Run reference = race(*traced, camera, reference_settings, pool, o.reference_seconds, nullptr, nullptr);
+    const Run reference =
+        race(*traced, camera, {reference_settings}, pool, o.reference_seconds, o.reference_seconds, nullptr, nullptr)
+            .front();
     const Image l2_reference = layer_average(reference.film, Layer::kL2);
     const Image image_reference = image_of(reference.film, reference_settings);
     std::fprintf(log, "lueur-bench: store %s: reference (reuse off) %llu frames in %.1f s\n", b.name.c_str(),
                  static_cast<unsigned long long>(reference.film.frames), reference.curve.back().seconds);
 
-    std::vector<Run> runs;
     const ReuseMode modes[] = {ReuseMode::kOff, ReuseMode::kFrame, ReuseMode::kCache, ReuseMode::kScreenCache};
+    std::vector<RenderSettings> settings;
     for (const ReuseMode mode : modes) {
       RenderSettings s = base;
       s.reuse = mode;
       s.seed = 1;
-      runs.push_back(race(*traced, camera, s, pool, o.seconds, &l2_reference, &image_reference));
+      settings.push_back(s);
     }
+    const std::vector<Run> runs =
+        race(*traced, camera, settings, pool, o.seconds, o.turn_seconds, &l2_reference, &image_reference);
     const double frame_l2 = runs[1].curve.back().l2;  // `frame` at the end of its time
     for (size_t m = 0; m < runs.size(); ++m) {
       const Run& r = runs[m];

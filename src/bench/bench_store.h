@@ -16,6 +16,7 @@ struct StoreOptions {
   int size = 256;                    ///< square images
   double seconds = 60.0;             ///< the equal time each mode gets
   double reference_seconds = 240.0;  ///< the reference (`off`, another seed) renders at least this long
+  double turn_seconds = 2.0;         ///< the modes take turns of this long (each on its own frames' clock)
   int threads = 0;                   ///< 0: all
 };
 
