@@ -114,5 +114,14 @@ TEST(Mpi, BadOptionsAndFilesEndEveryRankWithOneLineFromRankZero) {
   EXPECT_FALSE(file_exists(dir + "/x.pfm"));
 }
 
+TEST(Mpi, HelpNamesLueurMpiOnceFromRankZero) {
+  const auto r = run_shell(mpirun(2, "--help"));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  const size_t usage = r.output.find("Usage: lueur-mpi ");
+  ASSERT_NE(usage, std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("Usage:", usage + 1), std::string::npos) << "help printed by more than one rank";
+  EXPECT_NE(r.output.find("--reuse"), std::string::npos) << "the settings' options are listed";
+}
+
 }  // namespace
 }  // namespace lueur

@@ -70,10 +70,10 @@ Settings settings_from(const SettingOptions& given, const std::string& view_file
 
 }  // namespace
 
-std::optional<AppOptions> parse_command_line(int argc, char** argv) {
+std::optional<AppOptions> parse_command_line(int argc, char** argv, const ProgramName& program) {
   AppOptions o;
-  CLI::App app{"Lueur: a progressive CPU ray tracer of direct (L1) and one-bounce indirect (L2) light", "lueur"};
-  app.set_version_flag("--version", "lueur 0.1.0");
+  CLI::App app{program.description, program.name};
+  app.set_version_flag("--version", std::string(program.name) + " 0.1.0");
   // An option given twice takes its last value, as in most command-line tools (scripts/run.sh passes its own --out
   // before the user's).
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);

@@ -31,9 +31,15 @@ struct AppOptions {
   std::string resume_path;            ///< headless: go on from this resume state (written by --checkpoint)
 };
 
+/// Which program parses: its name and the first line of its --help.
+struct ProgramName {
+  const char* name = "lueur";
+  const char* description = "Lueur: a progressive CPU ray tracer of direct (L1) and one-bounce indirect (L2) light";
+};
+
 /// Parses argv. Returns nullopt when --help or --version printed something and the program should exit 0.
 /// Throws UsageError with a one-line message for anything malformed.
-std::optional<AppOptions> parse_command_line(int argc, char** argv);
+std::optional<AppOptions> parse_command_line(int argc, char** argv, const ProgramName& program = {});
 
 /// The command that renders this image again: the scene and the settings as options, stored in every saved image.
 std::string describe_options(const std::string& scene_path, const Settings& settings);

@@ -152,7 +152,10 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
   };
   bool help_only = false;
   try {
-    const std::optional<AppOptions> parsed = parse_command_line(argc, argv);
+    const ProgramName program{"lueur-mpi",
+                              "lueur-mpi: a headless Lueur render shared among MPI ranks (mpirun -n N lueur-mpi ...), "
+                              "the bytes lueur --headless writes"};
+    const std::optional<AppOptions> parsed = parse_command_line(argc, argv, program);
     if (!parsed) {
       help_only = true;
     } else {
