@@ -77,6 +77,7 @@ TEST_F(Cli, RefusesBadOptions) {
   }
   expect_refused("--ao-radius -2", "--ao-radius: '-2' is outside [0, 1e+30]");  // 0: automatic, as in the panel
   expect_refused("--recompute-ratio 17", "--recompute-ratio: '17' is outside [0, 16]");
+  expect_refused("--cache-mb 0", "--cache-mb: '0' is outside [1, 1048576]");  // whole bounds in full, not 1.04858e+06
   expect_refused("--seed -1", "--seed: '-1' is not a non-negative integer");
   expect_refused("--frame-limit -1", "--frame-limit: '-1' is not a non-negative integer");
   const test::CommandResult r = test::run_lueur("--headless");

@@ -3,7 +3,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <sstream>
 
 namespace lueur::setting_rows {
 
@@ -26,9 +25,12 @@ std::optional<float> finite_float(const std::string& text) {
 }
 
 std::string number_text(double v) {
-  std::ostringstream out;
-  out << v;
-  return out.str();
+  // Whole bounds in full ("1048576", not the stream's "1.04858e+06", which names another number); others as the
+  // shortest text that reads back ("0.5", "1e+30").
+  if (std::abs(v) < 1e15 && v == std::floor(v)) return std::to_string(static_cast<long long>(v));
+  char text[32];
+  const auto result = std::to_chars(text, text + sizeof text, v);
+  return std::string(text, result.ptr);
 }
 
 std::string in_quotes(const std::string& text) { return "'" + text + "'"; }
