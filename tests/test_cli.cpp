@@ -80,6 +80,11 @@ TEST_F(Cli, RefusesBadOptions) {
   expect_refused("--cache-mb 0", "--cache-mb: '0' is outside [1, 1048576]");  // whole bounds in full, not 1.04858e+06
   expect_refused("--seed -1", "--seed: '-1' is not a non-negative integer");
   expect_refused("--frame-limit -1", "--frame-limit: '-1' is not a non-negative integer");
+  // The program's own options in the same words (CLI11's range check let 'nan' through for --checkpoint).
+  expect_refused("--checkpoint nan", "--checkpoint: 'nan' is not a finite number");
+  expect_refused("--checkpoint -1", "--checkpoint: '-1' is outside [0, 1000000000]");
+  expect_refused("--threads 1.5", "--threads: '1.5' is not a non-negative integer");
+  expect_refused("--threads 2000", "--threads: '2000' is outside [0, 1024]");
   const test::CommandResult r = test::run_lueur("--headless");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("--out"), std::string::npos);

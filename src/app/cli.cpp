@@ -3,6 +3,8 @@
 // malformed value becomes a UsageError that names the option. An option given twice takes its last value.
 #include <CLI/CLI.hpp>
 #include <cctype>
+#include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <vector>
@@ -20,6 +22,36 @@ bool ends_with_png(const std::string& path) {
   std::string ext = path.substr(path.size() - 4);
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return ext == ".png";
+}
+
+/// The program's own numeric options checked in the settings' words ("'-1' is outside [0, 1024]"), where CLI11's
+/// Range said "Value -1 not in range 0.000000 to 1000000000.000000" and let "nan" through.
+CLI::Validator whole_number_in(SettingRange range) {
+  return CLI::Validator(
+      [range](std::string& text) -> std::string {
+        uint64_t value = 0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        const bool whole = !text.empty() && end == text.data() + text.size();
+        if (!whole || (error != std::errc() && error != std::errc::result_out_of_range))
+          return "'" + text + "' is not a non-negative integer";
+        if (error == std::errc::result_out_of_range || !range.contains(static_cast<double>(value)))
+          return "'" + text + "' is outside " + range.text();
+        return {};
+      },
+      "");
+}
+
+CLI::Validator finite_number_in(SettingRange range) {
+  return CLI::Validator(
+      [range](std::string& text) -> std::string {
+        double value = 0.0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        const bool whole = !text.empty() && end == text.data() + text.size();
+        if (!whole || error != std::errc() || !std::isfinite(value)) return "'" + text + "' is not a finite number";
+        if (!range.contains(value)) return "'" + text + "' is outside " + range.text();
+        return {};
+      },
+      "");
 }
 
 /// One option per row of the settings table; the text given is kept to be applied after any view file.
@@ -83,7 +115,9 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv, const Progra
   app.add_option("--out", o.out_path, "output image: .png (tone-mapped sRGB), .pfm (linear), .exr (linear, per pass)");
   SettingOptions settings;
   add_setting_options(app, settings);
-  app.add_option("--threads", o.threads, "worker threads (default: all cores)")->check(CLI::Range(0, 1024));
+  app.add_option("--threads", o.threads, "worker threads, at most 1024 (default 0: all cores)")
+      ->type_name("N")
+      ->check(whole_number_in({0, 1024}));
   app.add_option("--export-default-scene", o.export_default_scene,
                  "write the embedded default scene as OBJ + MTL to FILE.obj and exit");
   app.add_option("--gl", gl,
@@ -92,9 +126,9 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv, const Progra
   app.add_flag("--ui", o.ui, "draw the control panel into the headless screenshot (needs --gl)");
   app.add_option("--checkpoint", o.checkpoint_seconds,
                  "headless: every SECONDS, write the image so far and, beside it as OUT.lueur-state, what --resume "
-                 "needs to go on (also at the end)")
+                 "needs to go on (also at the end); 0: never")
       ->type_name("SECONDS")
-      ->check(CLI::Range(0.0, 1e9));
+      ->check(finite_number_in({0.0, 1e9}));
   app.add_option("--resume", o.resume_path,
                  "headless: go on from a state written by --checkpoint, with the same options (--frames may grow); "
                  "the final image is the one an uninterrupted render gives")
@@ -109,8 +143,8 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv, const Progra
   } catch (const CLI::CallForHelp&) {
     std::printf("%s", app.help().c_str());
     return std::nullopt;
-  } catch (const CLI::CallForVersion&) {
-    std::printf("lueur 0.1.0\n");
+  } catch (const CLI::CallForVersion& e) {
+    std::printf("%s\n", e.what());
     return std::nullopt;
   } catch (const CLI::ParseError& e) {
     std::string message = e.what();
