@@ -3,13 +3,12 @@
 // malformed value becomes a UsageError that names the option. An option given twice takes its last value.
 #include <CLI/CLI.hpp>
 #include <cctype>
-#include <charconv>
-#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <vector>
 
 #include "accel/embree_backend.h"
+#include "app/cli_checks.h"
 #include "app/options.h"
 #include "settings/setting_table.h"
 #include "settings/view_file.h"
@@ -22,36 +21,6 @@ bool ends_with_png(const std::string& path) {
   std::string ext = path.substr(path.size() - 4);
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return ext == ".png";
-}
-
-/// The program's own numeric options checked in the settings' words ("'-1' is outside [0, 1024]"), where CLI11's
-/// Range said "Value -1 not in range 0.000000 to 1000000000.000000" and let "nan" through.
-CLI::Validator whole_number_in(SettingRange range) {
-  return CLI::Validator(
-      [range](std::string& text) -> std::string {
-        uint64_t value = 0;
-        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-        const bool whole = !text.empty() && end == text.data() + text.size();
-        if (!whole || (error != std::errc() && error != std::errc::result_out_of_range))
-          return "'" + text + "' is not a non-negative integer";
-        if (error == std::errc::result_out_of_range || !range.contains(static_cast<double>(value)))
-          return "'" + text + "' is outside " + range.text();
-        return {};
-      },
-      "");
-}
-
-CLI::Validator finite_number_in(SettingRange range) {
-  return CLI::Validator(
-      [range](std::string& text) -> std::string {
-        double value = 0.0;
-        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-        const bool whole = !text.empty() && end == text.data() + text.size();
-        if (!whole || error != std::errc() || !std::isfinite(value)) return "'" + text + "' is not a finite number";
-        if (!range.contains(value)) return "'" + text + "' is outside " + range.text();
-        return {};
-      },
-      "");
 }
 
 /// One option per row of the settings table; the text given is kept to be applied after any view file.

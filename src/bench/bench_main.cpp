@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "app/cli_checks.h"
 #include "bench/bench_convergence.h"
 #include "bench/bench_frame.h"
 #include "bench/bench_rays.h"
@@ -60,27 +61,27 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
   app.add_option("--scenes", o.scenes_dir, "folder of the shared scenes (default: ../shared/scenes of the source)");
   app.add_option("--only", o.only, "only the scenes whose name contains this text");
   app.add_option("--rounds", o.rounds, "alternating timing rounds per figure (default 5; the median is kept)")
-      ->check(CLI::Range(1, 1000));
+      ->check(whole_number_in({1, 1000}));
   app.add_option("--sections", sections,
                  "comma-separated: build,throughput,convergence (default), traversal (nodes per ray), frame (the "
                  "renderer's rays per second against the same rays in the benchmark's arrays), store (the reuse "
                  "modes and the L1 store raced on the default scene and the conference room)");
   app.add_option("--store-seconds", store_seconds, "equal time per reuse mode in section store (default 60)")
-      ->check(CLI::Range(0.001, 100000.0));
+      ->check(finite_number_in({0.001, 100000.0}));
   app.add_option("--store-reference-seconds", store_reference_seconds,
                  "time of each reference in section store (default 240)")
-      ->check(CLI::Range(0.001, 100000.0));
+      ->check(finite_number_in({0.001, 100000.0}));
   app.add_option("--store-turn-seconds", store_turn_seconds,
                  "the reuse modes of section store take turns of this long, each on its own frames' clock (default 2)")
-      ->check(CLI::Range(0.001, 100000.0));
+      ->check(finite_number_in({0.001, 100000.0}));
   app.add_option("--store-size", store_size, "image side in pixels in section store (default 256)")
-      ->check(CLI::Range(8, 8192));
+      ->check(whole_number_in({8, 8192}));
   app.add_option("--reference-frames", reference_frames, "frames of each convergence reference (default 128)")
-      ->check(CLI::Range(1, 100000));
+      ->check(whole_number_in({1, 100000}));
   app.add_option("--convergence-seconds", convergence_seconds, "equal time per convergence variant (default 20)")
-      ->check(CLI::Range(0.001, 100000.0));
+      ->check(finite_number_in({0.001, 100000.0}));
   app.add_option("--convergence-size", convergence_size, "convergence image side in pixels (default 512)")
-      ->check(CLI::Range(8, 8192));
+      ->check(whole_number_in({8, 8192}));
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
