@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "accel/embree_backend.h"
-#include "app/cli_checks.h"
 #include "app/options.h"
 #include "settings/setting_table.h"
 #include "settings/view_file.h"
@@ -21,6 +20,11 @@ bool ends_with_png(const std::string& path) {
   std::string ext = path.substr(path.size() - 4);
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return ext == ".png";
+}
+
+/// A CLI11 check of one of the program's own options by `error` (settings/setting_table.h).
+CLI::Validator checked_by(std::string (*error)(const std::string&, const SettingRange&), SettingRange range) {
+  return CLI::Validator([error, range](std::string& text) { return error(text, range); }, "");
 }
 
 /// One option per row of the settings table; the text given is kept to be applied after any view file.
@@ -86,7 +90,7 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv, const Progra
   add_setting_options(app, settings);
   app.add_option("--threads", o.threads, "worker threads, at most 1024 (default 0: all cores)")
       ->type_name("N")
-      ->check(whole_number_in({0, 1024}));
+      ->check(checked_by(whole_number_error, {0, 1024}));
   app.add_option("--export-default-scene", o.export_default_scene,
                  "write the embedded default scene as OBJ + MTL to FILE.obj and exit");
   app.add_option("--gl", gl,
@@ -97,7 +101,7 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv, const Progra
                  "headless: every SECONDS, write the image so far and, beside it as OUT.lueur-state, what --resume "
                  "needs to go on (also at the end); 0: never")
       ->type_name("SECONDS")
-      ->check(finite_number_in({0.0, 1e9}));
+      ->check(checked_by(finite_number_error, {0.0, 1e9}));
   app.add_option("--resume", o.resume_path,
                  "headless: go on from a state written by --checkpoint, with the same options (--frames may grow); "
                  "the final image is the one an uninterrupted render gives")

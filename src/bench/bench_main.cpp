@@ -10,7 +10,6 @@
 #include <set>
 #include <sstream>
 
-#include "app/cli_checks.h"
 #include "bench/bench_convergence.h"
 #include "bench/bench_frame.h"
 #include "bench/bench_rays.h"
@@ -19,9 +18,15 @@
 #include "bench/bench_throughput.h"
 #include "core/atomic_file.h"
 #include "scene/obj_loader.h"
+#include "settings/setting_table.h"
 
 namespace lueur::bench {
 namespace {
+
+/// A CLI11 check of an option by `error`, in the words of lueur's own (settings/setting_table.h).
+CLI::Validator checked_by(std::string (*error)(const std::string&, const SettingRange&), SettingRange range) {
+  return CLI::Validator([error, range](std::string& text) { return error(text, range); }, "");
+}
 
 using Json = nlohmann::ordered_json;
 
@@ -61,27 +66,27 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
   app.add_option("--scenes", o.scenes_dir, "folder of the shared scenes (default: ../shared/scenes of the source)");
   app.add_option("--only", o.only, "only the scenes whose name contains this text");
   app.add_option("--rounds", o.rounds, "alternating timing rounds per figure (default 5; the median is kept)")
-      ->check(whole_number_in({1, 1000}));
+      ->check(checked_by(whole_number_error, {1, 1000}));
   app.add_option("--sections", sections,
                  "comma-separated: build,throughput,convergence (default), traversal (nodes per ray), frame (the "
                  "renderer's rays per second against the same rays in the benchmark's arrays), store (the reuse "
                  "modes and the L1 store raced on the default scene and the conference room)");
   app.add_option("--store-seconds", store_seconds, "equal time per reuse mode in section store (default 60)")
-      ->check(finite_number_in({0.001, 100000.0}));
+      ->check(checked_by(finite_number_error, {0.001, 100000.0}));
   app.add_option("--store-reference-seconds", store_reference_seconds,
                  "time of each reference in section store (default 240)")
-      ->check(finite_number_in({0.001, 100000.0}));
+      ->check(checked_by(finite_number_error, {0.001, 100000.0}));
   app.add_option("--store-turn-seconds", store_turn_seconds,
                  "the reuse modes of section store take turns of this long, each on its own frames' clock (default 2)")
-      ->check(finite_number_in({0.001, 100000.0}));
+      ->check(checked_by(finite_number_error, {0.001, 100000.0}));
   app.add_option("--store-size", store_size, "image side in pixels in section store (default 256)")
-      ->check(whole_number_in({8, 8192}));
+      ->check(checked_by(whole_number_error, {8, 8192}));
   app.add_option("--reference-frames", reference_frames, "frames of each convergence reference (default 128)")
-      ->check(whole_number_in({1, 100000}));
+      ->check(checked_by(whole_number_error, {1, 100000}));
   app.add_option("--convergence-seconds", convergence_seconds, "equal time per convergence variant (default 20)")
-      ->check(finite_number_in({0.001, 100000.0}));
+      ->check(checked_by(finite_number_error, {0.001, 100000.0}));
   app.add_option("--convergence-size", convergence_size, "convergence image side in pixels (default 512)")
-      ->check(whole_number_in({8, 8192}));
+      ->check(checked_by(whole_number_error, {8, 8192}));
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {

@@ -19,6 +19,29 @@ const Row& row_named(std::string_view name) {
 
 }  // namespace
 
+namespace {
+
+/// What `parse` throws as a ValueError, or "" where it throws nothing.
+template <typename Parse>
+std::string value_error_of(Parse parse) {
+  try {
+    parse();
+    return {};
+  } catch (const setting_rows::ValueError& e) {
+    return e.what();
+  }
+}
+
+}  // namespace
+
+std::string whole_number_error(const std::string& text, const SettingRange& range) {
+  return value_error_of([&] { setting_rows::parse_unsigned(text, range); });
+}
+
+std::string finite_number_error(const std::string& text, const SettingRange& range) {
+  return value_error_of([&] { setting_rows::parse_real(text, range); });
+}
+
 std::string SettingRange::text() const {
   std::string text(1, min_open ? '(' : '[');
   text += setting_rows::number_text(min);

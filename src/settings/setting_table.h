@@ -67,4 +67,10 @@ std::string describe_settings(const Settings& settings);
 /// The strongest effect among the settings that differ between `before` and `after` (kNone when none does).
 SettingEffect change_effect(const Settings& before, const Settings& after);
 
+/// What is wrong with the text of one of a program's own options (lueur's --threads, lueur-bench's seconds), in the
+/// settings' words: "'1.5' is not a non-negative integer", "'nan' is not a finite number", "'-1' is outside [0, 9]";
+/// empty where nothing is. (CLI11's Range let NaN through and wrote its bounds as 1000000000.000000.)
+std::string whole_number_error(const std::string& text, const SettingRange& range);
+std::string finite_number_error(const std::string& text, const SettingRange& range);
+
 }  // namespace lueur
