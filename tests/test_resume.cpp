@@ -78,7 +78,10 @@ TEST(ResumeRefused, AStateThatDoesNotMatchTheOptionsIsRefusedWithOneLine) {
   refused("--frames 4" + resume, "it already holds 6 frames, more than --frames 4");
   refused("--frames 6 --size 32x20" + resume, "--size");
   refused("--frames 6 --resume " + shell_quote(out), "it is not a Lueur state file");
-  refused("--frames 6 --resume " + shell_quote(dir + "/none"), "cannot read it");
+  refused("--frames 6 --resume " + shell_quote(dir + "/none"), "--resume: cannot open '" + dir + "/none': No such file");
+  // Not a regular file: refused at once, not read until memory runs out (/dev/zero) or forever (a FIFO).
+  refused("--frames 6 --resume /dev/zero", "--resume: cannot open '/dev/zero': not a regular file");
+  refused("--frames 6 --resume " + shell_quote(dir), "Is a directory");
   refused("--frames 6 --checkpoint -1", "--checkpoint");
   refused("--frames 6 " + shell_quote(std::string(LUEUR_SOURCE_DIR) + "/assets/cornell-apple.obj") + resume,
           "the scene");

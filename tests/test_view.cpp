@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <utility>
 
 #include "settings/view_file.h"
 #include "test_support.h"
@@ -92,6 +93,23 @@ TEST(ViewFile, AViewFileRendersTheSameImageAsTheOptionsItHolds) {
       test::run_lueur("--headless --view-file " + dir + "/nope.json --out " + dir + "/x.png");
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.output.find("nope.json"), std::string::npos) << missing.output;
+  // Not a regular file: one line at once, where /dev/zero used to be read until the process was killed.
+  for (const auto& [path, reason] : {std::pair<std::string, std::string>{"/dev/zero", "not a regular file"},
+                                     std::pair<std::string, std::string>{dir, "Is a directory"}}) {
+    const test::CommandResult r = test::run_lueur("--headless --view-file " + path + " --out " + dir + "/x.png");
+    EXPECT_EQ(r.exit_code, 2) << path;
+    EXPECT_NE(r.output.find("--view-file: cannot open '" + path + "': " + reason), std::string::npos) << r.output;
+  }
+  // A file far larger than any view is refused before it is read.
+  {
+    std::ofstream big(dir + "/big.json");
+    big << std::string((16u << 20) + 1, ' ');
+  }
+  const test::CommandResult big =
+      test::run_lueur("--headless --view-file " + dir + "/big.json --out " + dir + "/x.png");
+  EXPECT_EQ(big.exit_code, 2);
+  EXPECT_NE(big.output.find("big.json' is 16.0 MiB, more than"), std::string::npos) << big.output;
+  EXPECT_FALSE(test::file_exists(dir + "/x.png"));
 }
 
 }  // namespace

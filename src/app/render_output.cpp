@@ -6,12 +6,11 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 
 #include "app/displayed_image.h"
 #include "app/split_output.h"
 #include "core/atomic_file.h"
+#include "core/regular_file.h"
 #include "core/stopwatch.h"
 #include "image/image_output.h"
 #include "render/noise_estimate.h"
@@ -271,10 +270,14 @@ void finish_render(const AppOptions& options, const Film& film, const Film* righ
 
 void resume_films(const AppOptions& options, const TracedScene& traced, const std::vector<Film*>& films) {
   const std::string& path = options.resume_path;
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw UsageError("--resume '" + path + "': cannot read it");
-  const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  if (file.bad()) throw UsageError("--resume '" + path + "': cannot read it");
+  // A state no larger than the memory there is: its film was checked against that budget when it was rendered,
+  // and /dev/zero or a FIFO named by mistake is refused before it fills memory or blocks.
+  std::string bytes;
+  try {
+    bytes = read_regular_file(path, available_memory().bytes);
+  } catch (const FileReadError& e) {
+    throw UsageError(std::string("--resume: ") + e.what());
+  }
   try {
     decode_film_state(bytes, render_identity(options, traced), films);
   } catch (const std::runtime_error& e) {

@@ -4,18 +4,13 @@
 // Never depends on GL, the BVH or the render passes.
 #include "scene/obj_loader.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <string_view>
 #include <unordered_set>
 
+#include "core/regular_file.h"
 #include "scene/mtl_scan.h"
 #include "scene/obj_convert.h"
 #include "scene/obj_text.h"
@@ -34,47 +29,15 @@ using std::string_view;
 /// Reads a whole regular file; throws SceneError "cannot open 'path': reason". FIFOs, devices and directories
 /// are refused (a FIFO would block, /dev/zero never ends), and so is a file too large for the memory budget.
 std::string read_text_file(const std::string& path, const MemoryBudget& budget) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-  if (fd < 0) throw SceneError("cannot open '" + path + "': " + std::strerror(errno));
-  struct stat info {};
-  if (::fstat(fd, &info) != 0) {
-    const int why = errno;
-    ::close(fd);
-    throw SceneError("cannot open '" + path + "': " + std::strerror(why));
+  const auto check_size = [&](uint64_t bytes) {
+    if (const uint64_t needed = scene_memory_bytes(bytes, 0, 0, 0, 0); needed > budget.bytes)
+      throw SceneError(path + ": " + too_large("a " + format_bytes(bytes) + " file needs", needed, budget));
+  };
+  try {
+    return read_regular_file(path, check_size);
+  } catch (const FileReadError& e) {
+    throw SceneError(e.what());
   }
-  if (!S_ISREG(info.st_mode)) {
-    ::close(fd);
-    throw SceneError("cannot open '" + path + "': " +
-                     (S_ISDIR(info.st_mode) ? std::string(std::strerror(EISDIR)) : std::string("not a regular file")));
-  }
-  const uint64_t size = static_cast<uint64_t>(info.st_size);
-  if (const uint64_t needed = scene_memory_bytes(size, 0, 0, 0, 0); needed > budget.bytes) {
-    ::close(fd);
-    throw SceneError(path + ": " + too_large("a " + format_bytes(size) + " file needs", needed, budget));
-  }
-  std::string text;
-  text.reserve(static_cast<size_t>(size));
-  char buffer[1 << 16];
-  while (true) {
-    const ssize_t n = ::read(fd, buffer, sizeof buffer);
-    if (n == 0) break;
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const int why = errno;
-      ::close(fd);
-      throw SceneError("cannot read '" + path + "': " + std::strerror(why));
-    }
-    text.append(buffer, static_cast<size_t>(n));
-    // A file that grows while it is read is held to the same budget.
-    if (text.size() > size && scene_memory_bytes(text.size(), 0, 0, 0, 0) > budget.bytes) {
-      ::close(fd);
-      throw SceneError(path + ": " +
-                       too_large("a file growing past " + format_bytes(text.size()) + " needs",
-                                 scene_memory_bytes(text.size(), 0, 0, 0, 0), budget));
-    }
-  }
-  ::close(fd);
-  return text;
 }
 
 /// A UTF-8 byte-order mark would make tinyobjloader skip the first statement; it carries no meaning in OBJ.

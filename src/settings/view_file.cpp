@@ -2,10 +2,9 @@
 #include "settings/view_file.h"
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
 
 #include "core/atomic_file.h"
+#include "core/regular_file.h"
 #include "settings/setting_rows.h"
 
 namespace lueur {
@@ -52,12 +51,16 @@ void save_view_file(const std::string& path, const Settings& settings) {
 }
 
 Settings load_view_file(const std::string& path, const Settings& defaults) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError("cannot read view file '" + path + "'");
-  std::ostringstream text;
-  text << in.rdbuf();
+  // A view is a few kilobytes of JSON; the cap keeps /dev/zero or a huge file named by mistake from filling memory.
+  constexpr uint64_t kMaxViewFileBytes = uint64_t{16} << 20;
+  std::string text;
   try {
-    return view_from_json(text.str(), defaults);
+    text = read_regular_file(path, kMaxViewFileBytes);
+  } catch (const FileReadError& e) {
+    throw IoError(e.what());
+  }
+  try {
+    return view_from_json(text, defaults);
   } catch (const ViewFileError& e) {
     throw ViewFileError(path + ": " + e.what());
   }

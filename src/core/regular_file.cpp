@@ -1,0 +1,62 @@
+// Whole regular files read through one descriptor, with the size checked before and while reading.
+#include "core/regular_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include "core/memory_budget.h"
+
+namespace lueur {
+namespace {
+
+/// Closes the descriptor on every way out.
+struct Descriptor {
+  int fd = -1;
+  ~Descriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+}  // namespace
+
+std::string read_regular_file(const std::string& path, const FileSizeCheck& check_size) {
+  Descriptor file;
+  // O_NONBLOCK: opening a FIFO with no writer must not wait for one (it is refused just below).
+  file.fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (file.fd < 0) throw FileReadError("cannot open '" + path + "': " + std::strerror(errno));
+  struct stat info {};
+  if (::fstat(file.fd, &info) != 0) throw FileReadError("cannot open '" + path + "': " + std::strerror(errno));
+  if (!S_ISREG(info.st_mode))
+    throw FileReadError("cannot open '" + path + "': " +
+                        (S_ISDIR(info.st_mode) ? std::string(std::strerror(EISDIR)) : std::string("not a regular file")));
+  const uint64_t size = static_cast<uint64_t>(info.st_size);
+  check_size(size);
+  std::string text;
+  text.reserve(static_cast<size_t>(size));
+  char buffer[1 << 16];
+  while (true) {
+    const ssize_t n = ::read(file.fd, buffer, sizeof buffer);
+    if (n == 0) break;
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw FileReadError("cannot read '" + path + "': " + std::strerror(errno));
+    }
+    text.append(buffer, static_cast<size_t>(n));
+    if (text.size() > size) check_size(text.size());  // a file that grows while it is read
+  }
+  return text;
+}
+
+std::string read_regular_file(const std::string& path, uint64_t max_bytes) {
+  return read_regular_file(path, [&](uint64_t bytes) {
+    if (bytes > max_bytes)
+      throw FileReadError("'" + path + "' is " + format_bytes(bytes) + ", more than " + format_bytes(max_bytes) +
+                          " such a file can be");
+  });
+}
+
+}  // namespace lueur
