@@ -13,6 +13,13 @@
 namespace lueur {
 namespace {
 
+/// "cannot open 'path': reason" for the errno just set: read before the message's strings are built, since an
+/// allocation may change errno.
+FileReadError system_error(const char* what, const std::string& path) {
+  const int why = errno;
+  return FileReadError(std::string(what) + " '" + path + "': " + std::strerror(why));
+}
+
 /// Closes the descriptor on every way out.
 struct Descriptor {
   int fd = -1;
@@ -27,9 +34,9 @@ std::string read_regular_file(const std::string& path, const FileSizeCheck& chec
   Descriptor file;
   // O_NONBLOCK: opening a FIFO with no writer must not wait for one (it is refused just below).
   file.fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-  if (file.fd < 0) throw FileReadError("cannot open '" + path + "': " + std::strerror(errno));
+  if (file.fd < 0) throw system_error("cannot open", path);
   struct stat info {};
-  if (::fstat(file.fd, &info) != 0) throw FileReadError("cannot open '" + path + "': " + std::strerror(errno));
+  if (::fstat(file.fd, &info) != 0) throw system_error("cannot open", path);
   if (!S_ISREG(info.st_mode))
     throw FileReadError("cannot open '" + path + "': " +
                         (S_ISDIR(info.st_mode) ? std::string(std::strerror(EISDIR)) : std::string("not a regular file")));
@@ -43,7 +50,7 @@ std::string read_regular_file(const std::string& path, const FileSizeCheck& chec
     if (n == 0) break;
     if (n < 0) {
       if (errno == EINTR) continue;
-      throw FileReadError("cannot read '" + path + "': " + std::strerror(errno));
+      throw system_error("cannot read", path);
     }
     text.append(buffer, static_cast<size_t>(n));
     if (text.size() > size) check_size(text.size());  // a file that grows while it is read

@@ -17,10 +17,6 @@ const Row& row_named(std::string_view name) {
   throw std::logic_error("no setting named '" + std::string(name) + "'");
 }
 
-}  // namespace
-
-namespace {
-
 /// What `parse` throws as a ValueError, or "" where it throws nothing.
 template <typename Parse>
 std::string value_error_of(Parse parse) {
