@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -10,17 +11,71 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <mutex>
 #include <sstream>
 #include <thread>
 
 namespace lueur::test {
 
+namespace {
+
+/// Removes `dir` and everything in it, first giving back the owner's rights that a test took away (an unreadable
+/// file, a directory nobody may write): without them a user who is not root could not remove them.
+void remove_tree(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ignored;
+  fs::permissions(dir, fs::perms::owner_all, fs::perm_options::add, ignored);
+  for (auto it = fs::recursive_directory_iterator(dir, ignored); it != fs::recursive_directory_iterator();
+       it.increment(ignored))
+    fs::permissions(it->path(), fs::perms::owner_all, fs::perm_options::add, ignored);
+  fs::remove_all(dir, ignored);
+}
+
+/// The directories make_temp_dir made in this process. Once every test of the executable has run, they are removed
+/// (each test run used to leave about a hundred in the temp dir), unless a test failed: then they stay for a look,
+/// and the executable says where.
+class TempDirCleanup : public ::testing::Environment {
+ public:
+  static TempDirCleanup& instance() {
+    // Owned by GoogleTest once registered; registered before main runs (this file's static initialiser below).
+    static TempDirCleanup* const cleanup = [] {
+      auto* made = new TempDirCleanup;
+      ::testing::AddGlobalTestEnvironment(made);
+      return made;
+    }();
+    return *cleanup;
+  }
+  void add(const std::string& dir) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (std::find(dirs_.begin(), dirs_.end(), dir) == dirs_.end()) dirs_.push_back(dir);
+  }
+  void TearDown() override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const bool keep = ::testing::UnitTest::GetInstance()->Failed();
+    for (const std::string& dir : dirs_) {
+      if (keep)
+        std::fprintf(stderr, "a test failed: its files are kept in %s\n", dir.c_str());
+      else
+        remove_tree(dir);
+    }
+    dirs_.clear();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::string> dirs_;
+};
+
+[[maybe_unused]] const TempDirCleanup& kRegisterCleanup = TempDirCleanup::instance();
+
+}  // namespace
+
 std::string make_temp_dir(const std::string& tag) {
   namespace fs = std::filesystem;
   const fs::path base = fs::temp_directory_path() / ("lueur-test-" + tag + "-" + std::to_string(::getpid()));
-  std::error_code ignored;
-  fs::remove_all(base, ignored);
+  remove_tree(base);
   fs::create_directories(base);
+  TempDirCleanup::instance().add(base.string());
   return base.string();
 }
 

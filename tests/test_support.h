@@ -9,7 +9,8 @@
 
 namespace lueur::test {
 
-/// A fresh empty directory under the system temp dir (emptied first if a previous run left it).
+/// A fresh empty directory under the system temp dir (emptied first if a previous run left it), removed once the
+/// executable's tests have all passed (kept, and named on stderr, when one failed).
 std::string make_temp_dir(const std::string& tag);
 
 struct CommandResult {
