@@ -83,19 +83,23 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv, const Progra
   // before the user's).
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   std::string gl;
-  app.add_option("scene", o.scene_path, "OBJ scene (default: the embedded Cornell box with an apple)");
+  app.add_option("scene", o.scene_path, "OBJ scene (default: the embedded Cornell box with an apple)")
+      ->type_name("FILE");
   app.add_flag("--headless", o.headless, "render to a file instead of opening a window");
-  app.add_option("--out", o.out_path, "output image: .png (tone-mapped sRGB), .pfm (linear), .exr (linear, per pass)");
+  app.add_option("--out", o.out_path, "output image: .png (tone-mapped sRGB), .pfm (linear), .exr (linear, per pass)")
+      ->type_name("FILE");
   SettingOptions settings;
   add_setting_options(app, settings);
   app.add_option("--threads", o.threads, "worker threads, at most 1024 (default 0: all cores)")
       ->type_name("N")
       ->check(checked_by(whole_number_error, {0, 1024}));
   app.add_option("--export-default-scene", o.export_default_scene,
-                 "write the embedded default scene as OBJ + MTL to FILE.obj and exit");
+                 "write the embedded default scene as OBJ + MTL to FILE.obj and exit")
+      ->type_name("FILE");
   app.add_option("--gl", gl,
                  "headless PNG through the GL display shaders: egl|osmesa|auto (EGL, else OSMesa) or none (CPU, "
-                 "default)");
+                 "default)")
+      ->type_name("BACKEND");
   app.add_flag("--ui", o.ui, "draw the control panel into the headless screenshot (needs --gl)");
   app.add_option("--checkpoint", o.checkpoint_seconds,
                  "headless: every SECONDS, write the image so far and, beside it as OUT.lueur-state, what --resume "
@@ -107,7 +111,8 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv, const Progra
                  "the final image is the one an uninterrupted render gives")
       ->type_name("FILE");
   app.add_option("--view-file", o.view_file,
-                 "a view saved by the window (camera and all settings); options given as well override it");
+                 "a view saved by the window (camera and all settings); options given as well override it")
+      ->type_name("FILE");
   app.add_option("--state-file", o.state_file, "window: keep the current view and statistics in this JSON file")
       ->group("");  // for tests that drive the window
 

@@ -62,30 +62,40 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
   int store_size = 0;
   app.add_flag("--quick", o.quick, "a reduced set that runs in under a minute");
   app.add_flag("--smoke", o.smoke, "a tiny run that only checks the plumbing (seconds; for the test suite)");
-  app.add_option("--json", o.json_path, "write every figure to FILE as JSON");
-  app.add_option("--scenes", o.scenes_dir, "folder of the shared scenes (default: ../shared/scenes of the source)");
-  app.add_option("--only", o.only, "only the scenes whose name contains this text");
+  app.add_option("--json", o.json_path, "write every figure to FILE as JSON")->type_name("FILE");
+  app.add_option("--scenes", o.scenes_dir, "folder of the shared scenes (default: ../shared/scenes of the source)")
+      ->type_name("DIR");
+  app.add_option("--only", o.only, "only the scenes whose name contains this text")->type_name("TEXT");
   app.add_option("--rounds", o.rounds, "alternating timing rounds per figure (default 5; the median is kept)")
+      ->type_name("N")
       ->check(checked_by(whole_number_error, {1, 1000}));
   app.add_option("--sections", sections,
                  "comma-separated: build,throughput,convergence (default), traversal (nodes per ray), frame (the "
                  "renderer's rays per second against the same rays in the benchmark's arrays), store (the reuse "
-                 "modes and the L1 store raced on the default scene and the conference room)");
+                 "modes and the L1 store raced on the default scene and the conference room)")
+      ->type_name("LIST");
   app.add_option("--store-seconds", store_seconds, "equal time per reuse mode in section store (default 60)")
+      ->type_name("SECONDS")
       ->check(checked_by(finite_number_error, {0.001, 100000.0}));
   app.add_option("--store-reference-seconds", store_reference_seconds,
                  "time of each reference in section store (default 240)")
+      ->type_name("SECONDS")
       ->check(checked_by(finite_number_error, {0.001, 100000.0}));
   app.add_option("--store-turn-seconds", store_turn_seconds,
                  "the reuse modes of section store take turns of this long, each on its own frames' clock (default 2)")
+      ->type_name("SECONDS")
       ->check(checked_by(finite_number_error, {0.001, 100000.0}));
   app.add_option("--store-size", store_size, "image side in pixels in section store (default 256)")
+      ->type_name("PIXELS")
       ->check(checked_by(whole_number_error, {8, 8192}));
   app.add_option("--reference-frames", reference_frames, "frames of each convergence reference (default 128)")
+      ->type_name("N")
       ->check(checked_by(whole_number_error, {1, 100000}));
   app.add_option("--convergence-seconds", convergence_seconds, "equal time per convergence variant (default 20)")
+      ->type_name("SECONDS")
       ->check(checked_by(finite_number_error, {0.001, 100000.0}));
   app.add_option("--convergence-size", convergence_size, "convergence image side in pixels (default 512)")
+      ->type_name("PIXELS")
       ->check(checked_by(whole_number_error, {8, 8192}));
   try {
     app.parse(argc, argv);
