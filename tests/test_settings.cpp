@@ -8,6 +8,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "render/l1_cache.h"
 #include "settings/setting_table.h"
 #include "settings/view_file.h"
 #include "test_support.h"
@@ -223,6 +224,14 @@ TEST(SettingTable, TheCommandLineHasAnOptionForEverySetting) {
   ASSERT_EQ(help.exit_code, 0) << help.output;
   for (const SettingInfo& info : setting_infos())
     EXPECT_NE(help.output.find(info.option() + " "), std::string::npos) << info.option() << " is not in --help";
+}
+
+// Help that quotes a constant of the renderer quotes its value: --recompute-ratio's said the store modes fill with
+// 16 shadow rays for sessions after the fill had become kL1CacheFillRays = 8.
+TEST(SettingTable, RecomputeRatioHelpNamesTheStoresFillRays) {
+  const std::string help(setting_info("recompute-ratio").help);
+  EXPECT_NE(help.find("recompute with " + std::to_string(kL1CacheFillRays) + " shadow rays"), std::string::npos)
+      << help;
 }
 
 // The options an image holds render that image again, byte for byte (the PNG holds them too, so its bytes match

@@ -2,7 +2,9 @@
 // the panel, where it has one). The rows' order is that of the command line's help and of the settings written
 // into images (kept from before the table existed, so that images stay byte for byte the same).
 #include <limits>
+#include <string>
 
+#include "render/l1_cache.h"
 #include "settings/setting_kinds.h"
 
 namespace lueur::setting_rows {
@@ -44,12 +46,13 @@ std::vector<Row> make_rows() {
       "where L2 takes L1 at a bounce hit from: nowhere (recompute), this frame's pixels, their running average, the "
       "world-space L1 store, or the store where its cell is ready and the screen where not",
       E::kRestart, kReuseModeNames, [](auto& s) -> auto& { return s.render.reuse; }));
+  // The store's fill is a constant of the store (render/l1_cache.h): the text is built from it, never restated.
+  static const std::string recompute_help =
+      "share of the L1 rays that recompute L1 where it cannot be reused (the store modes recompute with " +
+      std::to_string(kL1CacheFillRays) + " shadow rays, which fill the store's cell, where the store has room for it)";
   table.push_back(real_row(
-      "recompute-ratio",
-      "share of the L1 rays that recompute L1 where it cannot be reused (the store modes recompute with 16, which "
-      "fill the store's cell, where the store has room for it)",
-      E::kRestart,
-      [](auto& s) -> auto& { return s.render.recompute_ratio; }, {0, 16}, SettingRange{0, 1}));
+      "recompute-ratio", recompute_help, E::kRestart, [](auto& s) -> auto& { return s.render.recompute_ratio; },
+      {0, 16}, SettingRange{0, 1}));
   table.push_back(switch_row(
       "reuse-diffuse-only", "reuse only the view-independent part of L1 (no bias on glossy surfaces)", E::kRestart,
       [](auto& s) -> auto& { return s.render.reuse_diffuse_only; }, true));
