@@ -1,13 +1,10 @@
 // No lost output: lueur is killed (SIGKILL) in the middle of writing a large EXR, and the file on disk is then
 // either the old one, byte for byte, or the complete new one; never a partial file, and nothing left beside it
 // that could be taken for output. LUEUR_TEST_PAUSE_MID_WRITE (see core/atomic_file.h) makes the kill land
-// mid-write deterministically; a second test kills at random moments without it.
-#include "core/atomic_file.h"
-#include "test_support.h"
-
-#include <gtest/gtest.h>
-
+// mid-write deterministically; a second test kills at random moments without it. Ctrl-C (SIGINT) or SIGTERM during
+// a headless render loses nothing either: the frames done are written, with the state that --resume goes on from.
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <poll.h>
 #include <signal.h>
 #include <spawn.h>
@@ -19,6 +16,9 @@
 #include <random>
 #include <set>
 #include <thread>
+
+#include "core/atomic_file.h"
+#include "test_support.h"
 
 extern char** environ;
 
@@ -47,7 +47,18 @@ class Child {
     std::vector<char*> envp;
     for (std::string& s : env_storage) envp.push_back(s.data());
     envp.push_back(nullptr);
-    const int error = ::posix_spawn(&pid_, LUEUR_EXECUTABLE, &actions, nullptr, argv.data(), envp.data());
+    // SIGINT and SIGTERM with their default actions, whatever this process inherited: a test run started in the
+    // background by a shell without job control ignores SIGINT, and lueur, rightly, would keep ignoring it.
+    posix_spawnattr_t attributes;
+    posix_spawnattr_init(&attributes);
+    sigset_t defaults;
+    sigemptyset(&defaults);
+    sigaddset(&defaults, SIGINT);
+    sigaddset(&defaults, SIGTERM);
+    posix_spawnattr_setsigdefault(&attributes, &defaults);
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
+    const int error = ::posix_spawn(&pid_, LUEUR_EXECUTABLE, &actions, &attributes, argv.data(), envp.data());
+    posix_spawnattr_destroy(&attributes);
     posix_spawn_file_actions_destroy(&actions);
     ::close(fds[1]);
     output_fd_ = fds[0];
@@ -235,6 +246,50 @@ TEST_F(NoLostOutput, KilledAtRandomMomentsAlwaysOldOrCompleteNew) {
   }
   std::printf("killed 6 runs: %d left the old file, %d the complete new one\n", old_seen, new_seen);
 }
+
+class InterruptedRender : public ::testing::TestWithParam<int> {};
+
+// The first SIGINT or SIGTERM stops a headless render after the frame in flight: the image holds the frames done,
+// byte for byte what an uninterrupted render of that many frames writes, the state beside it resumes to the bytes
+// of an uninterrupted longer render, and the exit status is 128 + the signal. (Before, the signal ended lueur at
+// once and every frame traced was lost.)
+TEST_P(InterruptedRender, WritesTheFramesDoneAndTheStateToResumeFrom) {
+  const int signal_number = GetParam();
+  const std::string dir = test::make_temp_dir(std::string("interrupted-") + (signal_number == SIGINT ? "int" : "term"));
+  const std::string out = dir + "/image.pfm", state = out + ".lueur-state";
+  const std::string size = "32x24";
+  Child render({"--headless", "--size", size, "--frames", "1000000", "--checkpoint", "100000", "--out", out}, {});
+  // The progress line comes from inside the frame loop, where the signals are caught.
+  ASSERT_TRUE(render.wait_for_output("lueur: frame ", kStartupSeconds)) << render.output();
+  ::kill(render.pid(), signal_number);
+  ASSERT_TRUE(render.wait_for_output(" (a second one ends lueur at once)\n", kStartupSeconds)) << render.output();
+  render.wait_for_output("\n" + out + "\n", kStartupSeconds);  // the path, printed last
+  EXPECT_EQ(render.reap(), 128 + signal_number) << render.output();
+  const std::string& said = render.output();
+  const size_t at = said.find("stopped after ");
+  ASSERT_NE(at, std::string::npos) << said;
+  const int frames = std::stoi(said.substr(at + 14));
+  ASSERT_GT(frames, 0) << said;
+  EXPECT_EQ(entries(dir), (std::set<std::string>{"image.pfm", "image.pfm.lueur-state"}));
+
+  const std::string base = "--headless --size " + size + " --out ";
+  const std::string whole = dir + "/whole.pfm";
+  const auto uninterrupted = test::run_lueur(base + whole + " --frames " + std::to_string(frames));
+  ASSERT_EQ(uninterrupted.exit_code, 0) << uninterrupted.output;
+  EXPECT_EQ(test::read_file(out), test::read_file(whole)) << "the interrupted image is not its frames' image";
+
+  const std::string more = std::to_string(frames + 3);
+  const auto resumed = test::run_lueur(base + out + " --frames " + more + " --resume " + state);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  const auto longer = test::run_lueur(base + whole + " --frames " + more);
+  ASSERT_EQ(longer.exit_code, 0) << longer.output;
+  EXPECT_EQ(test::read_file(out), test::read_file(whole)) << "the resumed image differs from the uninterrupted one";
+}
+
+INSTANTIATE_TEST_SUITE_P(Signals, InterruptedRender, ::testing::Values(SIGINT, SIGTERM),
+                         [](const ::testing::TestParamInfo<int>& p) {
+                           return std::string(p.param == SIGINT ? "SIGINT" : "SIGTERM");
+                         });
 
 }  // namespace
 }  // namespace lueur

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "app/interrupt.h"
 #include "app/render_output.h"
 #include "app/scene_source.h"
 #include "core/stopwatch.h"
@@ -42,6 +43,8 @@ int run_headless(const AppOptions& options) {
   bool stopped_by_noise = false, out_of_time = false;
   RunningNoiseEstimate running_noise;  // for the target, remade at powers of two of the frames
   const uint64_t first = film.frames;
+  const InterruptCatcher interrupts;  // from here on, Ctrl-C stops after the frame in flight and keeps the frames
+  int interrupted_by = 0;
   while (film.frames < static_cast<uint64_t>(frames)) {
     const FrameResult frame = render_frame_pair(traced, camera, settings, film, right ? &right->render : nullptr,
                                                 right ? &right_film : nullptr, pool, figures.tally);
@@ -72,6 +75,7 @@ int run_headless(const AppOptions& options) {
       break;
     }
     if (out_of_time) break;
+    if ((interrupted_by = interrupts.caught()) != 0) break;
     if (options.checkpoint_seconds > 0.0 && seconds_since(last_checkpoint) >= options.checkpoint_seconds &&
         done < static_cast<uint64_t>(frames)) {
       figures.seconds = elapsed;
@@ -81,10 +85,16 @@ int run_headless(const AppOptions& options) {
   }
   figures.seconds = seconds_since(start);
   if (tty) std::fprintf(stderr, "\n");
+  if (interrupted_by != 0)
+    std::fprintf(stderr,
+                 "lueur: %s: stopped after %llu of %d frames; writing them%s (a second one ends lueur at once)\n",
+                 signal_name(interrupted_by), static_cast<unsigned long long>(film.frames), frames,
+                 options.checkpoint_seconds > 0.0 ? ", and the state that --resume goes on from" : "");
   finish_render(options, film, right ? &right_film : nullptr, traced, figures, out_of_time, stopped_by_noise);
   print_run_summary(options, film, right ? &right_film : nullptr, figures);
   std::printf("%s\n", options.out_path.c_str());
-  return 0;
+  // The shell's convention for a process ended by a signal, so that a script sees the render was cut short.
+  return interrupted_by != 0 ? 128 + interrupted_by : 0;
 }
 
 }  // namespace lueur
