@@ -85,12 +85,8 @@ int run_headless(const AppOptions& options) {
   }
   figures.seconds = seconds_since(start);
   if (tty) std::fprintf(stderr, "\n");
-  if (interrupted_by != 0)
-    std::fprintf(stderr,
-                 "lueur: %s: stopped after %llu of %d frames; writing them%s (a second one ends lueur at once)\n",
-                 signal_name(interrupted_by), static_cast<unsigned long long>(film.frames), frames,
-                 options.checkpoint_seconds > 0.0 ? ", and the state that --resume goes on from" : "");
-  finish_render(options, film, right ? &right_film : nullptr, traced, figures, out_of_time, stopped_by_noise);
+  finish_render(options, film, right ? &right_film : nullptr, traced, figures, out_of_time, stopped_by_noise,
+                interrupted_by);
   print_run_summary(options, film, right ? &right_film : nullptr, figures);
   std::printf("%s\n", options.out_path.c_str());
   // The shell's convention for a process ended by a signal, so that a script sees the render was cut short.

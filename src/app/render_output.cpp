@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "app/displayed_image.h"
+#include "app/interrupt.h"
 #include "app/split_output.h"
 #include "core/atomic_file.h"
 #include "core/regular_file.h"
@@ -255,11 +256,16 @@ void write_checkpoint(const AppOptions& options, const Film& film, const Film* r
 }
 
 void finish_render(const AppOptions& options, const Film& film, const Film* right, const TracedScene& traced,
-                   const RunFigures& figures, bool out_of_time, bool stopped_by_noise) {
+                   const RunFigures& figures, bool out_of_time, bool stopped_by_noise, int interrupted_by) {
+  if (interrupted_by != 0)
+    std::fprintf(stderr,
+                 "lueur: %s: stopped after %llu of %d frames; writing them%s (a second one ends lueur at once)\n",
+                 signal_name(interrupted_by), static_cast<unsigned long long>(film.frames), options.settings.frames,
+                 options.checkpoint_seconds > 0.0 ? ", and the state that --resume goes on from" : "");
   if (out_of_time && !stopped_by_noise)
     std::fprintf(stderr, "lueur: time limit of %g s reached after %llu of %d frames\n", options.settings.time_limit,
                  static_cast<unsigned long long>(film.frames), options.settings.frames);
-  if (options.settings.target_noise > 0.0 && !stopped_by_noise)
+  if (options.settings.target_noise > 0.0 && !stopped_by_noise && interrupted_by == 0)
     std::fprintf(stderr, "lueur: target noise %g not reached in %llu frames (raise --frames)\n",
                  options.settings.target_noise, static_cast<unsigned long long>(film.frames));
   if (options.checkpoint_seconds > 0.0)

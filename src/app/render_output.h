@@ -86,10 +86,11 @@ RenderIdentity render_identity(const AppOptions& options, const TracedScene& tra
 void write_checkpoint(const AppOptions& options, const Film& film, const Film* right, const TracedScene& traced,
                       const RunFigures& figures);
 
-/// The end of a render: says why it stopped before its last frame, if it did, and writes the image (and, with
-/// --checkpoint, the resume state). Throws IoError.
+/// The end of a render: says why it stopped before its last frame, if it did (the time limit, the target noise, or
+/// `interrupted_by`, the signal that cut it short, 0 for none), and writes the image (and, with --checkpoint, the
+/// resume state). Throws IoError.
 void finish_render(const AppOptions& options, const Film& film, const Film* right, const TracedScene& traced,
-                   const RunFigures& figures, bool out_of_time, bool stopped_by_noise);
+                   const RunFigures& figures, bool out_of_time, bool stopped_by_noise, int interrupted_by = 0);
 
 /// Restores the films from --resume. Throws UsageError naming the file and the problem.
 void resume_films(const AppOptions& options, const TracedScene& traced, const std::vector<Film*>& films);
