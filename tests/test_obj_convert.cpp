@@ -77,6 +77,9 @@ TEST(SceneLoader, MaterialsAndEmitters) {
   EXPECT_TRUE(light.emissive());
   // "Kd 0.25" means grey (tinyobjloader alone would read (0.25, 0, 0)).
   EXPECT_EQ(scene.materials[2].kd, Vec3(0.25f));
+  // No Ns: exponent 0 (tinyobjloader alone would read 1).
+  EXPECT_EQ(light.ns, 0.0f);
+  EXPECT_EQ(scene.materials[2].ns, 0.0f);
   EXPECT_EQ(scene.emitters, (std::vector<uint32_t>{2, 3, 4}));
   EXPECT_EQ(count_with_material(scene, "light"), 4u);
   EXPECT_TRUE(has_warning(loaded, "1 zero-area triangle (kept")) << all_warnings(loaded);

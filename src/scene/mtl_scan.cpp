@@ -68,7 +68,7 @@ std::vector<MtlEntry> scan_mtl(const MtlSource& source, std::vector<std::string>
     while (!raw.empty() && is_blank(raw.back())) raw.remove_suffix(1);
     while (!raw.empty() && is_blank(raw.front())) raw.remove_prefix(1);
     if (raw.size() > 7 && raw.substr(0, 6) == "newmtl" && is_blank(raw[6])) {
-      entries.push_back({std::string(raw.substr(7)), {false, false, false}});
+      entries.push_back({std::string(raw.substr(7)), {false, false, false}, false});
       return;
     }
     if (raw.size() < 3 || !is_blank(raw[2])) return;
@@ -85,6 +85,7 @@ std::vector<MtlEntry> scan_mtl(const MtlSource& source, std::vector<std::string>
     const std::string where = source.label + ":" + std::to_string(line) + ": ";
     const size_t given = check_mtl_values(keyword, raw.substr(3), slot < 0 ? 1 : 3, where, warnings);
     if (slot >= 0 && given == 1 && !entries.empty()) entries.back().single_value[slot] = true;
+    if (slot < 0 && !entries.empty()) entries.back().has_ns = true;
   });
   return entries;
 }
