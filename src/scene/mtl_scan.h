@@ -19,7 +19,7 @@ struct MtlSource {
 struct MtlEntry {
   std::string name;
   bool single_value[3] = {false, false, false};  ///< Kd, Ks, Ke given as one grey value
-  bool has_ns = false;  ///< an Ns statement was given (tinyobjloader reads a missing one as 1, not the MTL's 0)
+  bool has_ns = false;  ///< an Ns statement was given (tinyobjloader reads a missing one as 1; Lueur takes 0)
 };
 
 /// The MTL files of a scene as tinyobjloader reads them: one text, and its materials in order.
