@@ -2,8 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <fstream>
 
+#include "obj_test_support.h"
 #include "render/indirect_light.h"
 #include "render/renderer.h"
 #include "scene/default_scene.h"
@@ -139,14 +139,15 @@ INSTANTIATE_TEST_SUITE_P(Reuse, ClosedBoxL2,
 // 3.3% (L2) low.
 TEST(ClosedBoxFromAFile, AnMtlWithoutNsGivesTheClosedFormsWithTheDefaultSettings) {
   const std::string dir = test::make_temp_dir("closed-box-file");
-  std::ofstream(dir + "/box.mtl") << "newmtl wall\nKd 0.5 0.5 0.5\nKe 1 1 1\n";
-  // The cube [-1, 1]^3, each face counter-clockwise seen from inside.
-  std::ofstream(dir + "/box.obj") << "mtllib box.mtl\n"
-                                     "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
-                                     "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
-                                     "usemtl wall\n"
-                                     "f 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 4 3 7 8\nf 1 4 8 5\nf 2 6 7 3\n";
-  const auto traced = prepare_scene(load_obj(dir + "/box.obj").scene);
+  test::write_text(dir, "box.mtl", "newmtl wall\nKd 0.5 0.5 0.5\nKe 1 1 1\n");
+  // The cube [-1, 1]^3, each face counter-clockwise seen from inside (obj_test_support.h's cube faces outwards).
+  const std::string path = test::write_text(dir, "box.obj",
+                                            "mtllib box.mtl\n"
+                                            "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
+                                            "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+                                            "usemtl wall\n"
+                                            "f 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 4 3 7 8\nf 1 4 8 5\nf 2 6 7 3\n");
+  const auto traced = prepare_scene(load_obj(path).scene);
   ASSERT_EQ(traced->scene.emitters.size(), 12u);
   EXPECT_EQ(traced->scene.materials.front().ns, 0.0f);
   RenderSettings settings;  // the defaults, but for the size and the passes
