@@ -65,8 +65,10 @@ std::vector<std::string> split_mtllib(string_view s) {
 }
 
 /// Reads the MTL files named by the mtllib lines, beside the OBJ file. Unreadable ones become warnings.
+/// Each MTL file named, read or not, goes into `files`, stamped before it is read.
 std::vector<MtlSource> read_mtl_files(const std::string& obj_path, const std::string& label, const ObjSummary& s,
-                                      const MemoryBudget& budget, std::vector<std::string>& warnings) {
+                                      const MemoryBudget& budget, std::vector<std::string>& warnings,
+                                      std::vector<WatchedFile>& files) {
   namespace fs = std::filesystem;
   const fs::path directory = fs::path(obj_path).parent_path();
   std::vector<MtlSource> sources;
@@ -79,6 +81,7 @@ std::vector<MtlSource> read_mtl_files(const std::string& obj_path, const std::st
     for (const std::string& name : names) {
       if (!seen.insert(name).second) continue;
       const std::string mtl_path = (directory / name).string();
+      files.push_back({mtl_path, stamp_file(mtl_path)});
       try {
         MtlSource source{name, read_text_file(mtl_path, budget)};
         strip_bom(source.text);
@@ -121,11 +124,12 @@ uint64_t scene_memory_bytes(uint64_t text_bytes, uint64_t vertices, uint64_t nor
 
 LoadedScene load_obj(const std::string& path, const LoadOptions& options) {
   const MemoryBudget budget = options.memory ? *options.memory : available_memory();
+  std::vector<WatchedFile> files{{path, stamp_file(path)}};
   std::string text = read_text_file(path, budget);
   strip_bom(text);
   ObjSummary summary = obj::validate_obj(text, path, budget);
   std::vector<std::string> mtl_warnings;
-  std::vector<MtlSource> sources = read_mtl_files(path, path, summary, budget, mtl_warnings);
+  std::vector<MtlSource> sources = read_mtl_files(path, path, summary, budget, mtl_warnings, files);
   summary.warnings.insert(summary.warnings.end(), mtl_warnings.begin(), mtl_warnings.end());
   const uint64_t scene_bytes =
       scene_memory_bytes(text.size(), summary.vertices, summary.normals, summary.texcoords, summary.expected_triangles);
@@ -140,7 +144,8 @@ LoadedScene load_obj(const std::string& path, const LoadOptions& options) {
       directories.push_back(mtl_directory.string());
   }
   const uint64_t texture_budget = budget.bytes > scene_bytes ? budget.bytes - scene_bytes : 0;
-  obj::load_scene_textures(loaded.scene, directories, texture_budget, path, loaded.warnings);
+  obj::load_scene_textures(loaded.scene, directories, texture_budget, path, loaded.warnings, files);
+  loaded.files = std::move(files);
   return loaded;
 }
 
@@ -158,7 +163,8 @@ LoadedScene load_obj_from_text(const std::string& obj_text, const std::string& m
     sources.push_back(std::move(source));
   }
   LoadedScene loaded = obj::build_scene(text, name, scene_name_of(name), summary, sources, options);
-  obj::load_scene_textures(loaded.scene, {}, 0, name, loaded.warnings);
+  std::vector<WatchedFile> no_files;
+  obj::load_scene_textures(loaded.scene, {}, 0, name, loaded.warnings, no_files);
   return loaded;
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/file_watch.h"
 #include "core/memory_budget.h"
 #include "scene/scene.h"
 
@@ -46,6 +47,10 @@ uint64_t scene_memory_bytes(uint64_t text_bytes, uint64_t vertices, uint64_t nor
 struct LoadedScene {
   Scene scene;
   std::vector<std::string> warnings;
+  /// Every file the scene was read from or looked for, each stamped just before it was read: the OBJ, each MTL its
+  /// mtllib lines name (found or not), each texture (where it was found; a missing one where it would be looked for
+  /// first). The window reloads the scene when one of them changes. Empty for a scene given as text.
+  std::vector<WatchedFile> files;
 };
 
 /// Loads `path` and the MTL files its `mtllib` lines name (looked up beside the OBJ file).

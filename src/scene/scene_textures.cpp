@@ -12,10 +12,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// The first of `directories` holding `name`; exporters on Windows write backslashes, tried as slashes too.
+/// Exporters on Windows write backslashes.
+std::string with_slashes(std::string name) {
+  std::replace(name.begin(), name.end(), '\\', '/');
+  return name;
+}
+
+/// The first of `directories` holding `name`, as written or with slashes for backslashes.
 std::string find_texture(const std::string& name, const std::vector<std::string>& directories) {
-  std::string slashed = name;
-  std::replace(slashed.begin(), slashed.end(), '\\', '/');
+  const std::string slashed = with_slashes(name);
   for (const std::string& directory : directories) {
     for (const std::string& candidate : {name, slashed}) {
       const fs::path path = fs::path(directory) / candidate;
@@ -29,7 +34,8 @@ std::string find_texture(const std::string& name, const std::vector<std::string>
 }  // namespace
 
 void load_scene_textures(Scene& scene, const std::vector<std::string>& directories, uint64_t byte_limit,
-                         const std::string& label, std::vector<std::string>& warnings) {
+                         const std::string& label, std::vector<std::string>& warnings,
+                         std::vector<WatchedFile>& files) {
   // The file found (or, when none is, the name as written) -> its texture index, or -1 after a failure: each file
   // is read once and each failure said once, however many statements name it and however they spell its path.
   std::map<std::string, int32_t> loaded;
@@ -39,6 +45,12 @@ void load_scene_textures(Scene& scene, const std::vector<std::string>& directori
     const std::string& key = path.empty() ? name : path;
     const auto known = loaded.find(key);
     if (known != loaded.end()) return known->second;
+    if (!directories.empty()) {
+      // A missing texture is watched where it would be found first: beside the OBJ, with slashes.
+      const std::string watched =
+          path.empty() ? (fs::path(directories.front()) / with_slashes(name)).string() : path;
+      files.push_back({watched, stamp_file(watched)});
+    }
     std::string error;
     Texture texture;
     if (directories.empty())

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/file_watch.h"
 #include "scene/scene.h"
 
 namespace lueur::obj {
@@ -13,8 +14,10 @@ namespace lueur::obj {
 /// Loads every texture the materials name, each file once, looking for it in `directories` in order (the OBJ's, then
 /// each MTL file's). A texture that is missing, unreadable or too large for `byte_limit` (all textures together) is
 /// one warning, labelled `label`; its material then falls back to grey (map_Kd) or to no cutout (map_d). With no
-/// directories (a scene given as text) no file is read, and each named texture is such a warning.
+/// directories (a scene given as text) no file is read, and each named texture is such a warning. Each texture file
+/// goes into `files`, stamped before it is read; a missing one as the first place it would be found.
 void load_scene_textures(Scene& scene, const std::vector<std::string>& directories, uint64_t byte_limit,
-                         const std::string& label, std::vector<std::string>& warnings);
+                         const std::string& label, std::vector<std::string>& warnings,
+                         std::vector<WatchedFile>& files);
 
 }  // namespace lueur::obj
