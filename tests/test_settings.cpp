@@ -51,6 +51,7 @@ Settings unusual_settings() {
   s.frame_limit = 100;
   s.time_limit = 600.5f;    // never reached by the renders below
   s.target_noise = 1e-20f;  // never reached by the renders below either
+  s.watch = false;
   s.compare = "l1-rays=3";
   s.compare_split = 0.25f;
   return s;

@@ -3,7 +3,9 @@
 // while a traced frame is in progress. Every wait is for an event the state file shows, with a give-up time that
 // only keeps a hang from stalling the suite; the display's timing figures are scripts/bench-window.sh's to report.
 // CTest runs this executable inside xvfb-run (see tests/CMakeLists.txt).
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -267,6 +269,74 @@ TEST_F(SplitWindow, BothSidesAccumulateAndTheDividerFollowsTheMouse) {
   // Moving the divider is a display change: neither side restarted.
   EXPECT_EQ(after["generation"], before["generation"]);
   EXPECT_EQ(after["right_generation"], before["right_generation"]);
+}
+
+/// The viewer started on a scene file of its own (a floor and a light: four triangles), watching it.
+class ReloadWindow : public Window {
+ protected:
+  ReloadWindow() : scene_dir_(test::make_temp_dir("window-scene")) { save(kFloor + kLight); }
+
+  std::vector<std::string> extra_arguments() const override { return {scene_dir_ + "/scene.obj"}; }
+
+  /// Writes the scene as a new version: a rename into place with a later time, as an exporter may write it.
+  void save(const std::string& obj) {
+    ++version_;
+    const std::string part = scene_dir_ + "/scene.obj.part";
+    { std::ofstream(part, std::ios::binary) << "mtllib scene.mtl\n" << obj; }
+    const timespec times[2] = {{1000000 + version_, 0}, {1000000 + version_, 0}};
+    ::utimensat(AT_FDCWD, part.c_str(), times, 0);
+    std::rename(part.c_str(), (scene_dir_ + "/scene.obj").c_str());
+    std::ofstream(scene_dir_ + "/scene.mtl") << "newmtl white\nKd 0.8 0.8 0.8\nnewmtl light\nKe 5 5 5\n";
+  }
+
+  static inline const std::string kFloor =
+      "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nusemtl white\nf 1 3 2\nf 1 4 3\n";
+  static inline const std::string kLight =
+      "v -0.2 1 -0.2\nv 0.2 1 -0.2\nv 0.2 1 0.2\nv -0.2 1 0.2\nusemtl light\nf 5 6 7\nf 5 7 8\n";
+  std::string scene_dir_;
+  int version_ = 0;
+};
+
+TEST_F(ReloadWindow, ASavedSceneIsReloadedWithTheCameraKeptAndABrokenOneLeavesTheOldScene) {
+  ASSERT_TRUE(wait_for([](const json& s) { return s["triangles"] == 4 && !s["loading"].get<bool>(); }))
+      << state().dump();
+  const json camera = state()["view"]["camera"];
+  const uint64_t generation = state()["generation"].get<uint64_t>();
+
+  // A fifth triangle that widens the scene (its own default view would frame it differently): reloaded, camera kept.
+  save(kFloor + kLight + "v 3 0 3\nusemtl white\nf 2 9 3\n");
+  ASSERT_TRUE(wait_for([&](const json& s) {
+    return s["triangles"] == 5 && s["message"].get<std::string>().find("reloaded") != std::string::npos;
+  })) << state().dump();
+  EXPECT_EQ(state()["view"]["camera"], camera) << "the reload moved the camera";
+  EXPECT_GT(state()["generation"].get<uint64_t>(), generation) << "the new scene did not restart the accumulation";
+
+  // Saved broken: the error shows, the old scene stays (and is not reloaded over and over).
+  save(kFloor + "f 1 2 99\n");
+  ASSERT_TRUE(wait_for([](const json& s) {
+    return s["message_is_error"].get<bool>() && s["message"].get<std::string>().find("cannot load") != std::string::npos;
+  })) << state().dump();
+  EXPECT_EQ(state()["triangles"], 5);
+  const std::string error = state()["message"].get<std::string>();
+  EXPECT_NE(error.find("out of range"), std::string::npos) << error;
+  const uint64_t loads = state()["scene_loads"].get<uint64_t>();
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // six of the watch's polls
+  EXPECT_EQ(state()["scene_loads"].get<uint64_t>(), loads) << "the broken file was read again unchanged";
+
+  // Mended: loaded again.
+  save(kFloor + kLight + "v 3 0 3\nv 3 1 3\nusemtl white\nf 2 9 3\nf 3 9 10\n");
+  ASSERT_TRUE(wait_for([](const json& s) { return s["triangles"] == 6 && !s["message_is_error"].get<bool>(); }))
+      << state().dump();
+
+  // F5 reads it again unchanged: a new accumulation of the same scene.
+  const uint64_t before_f5 = state()["generation"].get<uint64_t>();
+  // Held for a few of the viewer's frames, as a hand presses a key (it reads the keys' state once per frame).
+  xdotool("windowfocus --sync " + window_ + " keydown F5");
+  wait_for_viewer_frames(3.0);
+  xdotool("keyup F5");
+  EXPECT_TRUE(wait_for([&](const json& s) {
+    return s["generation"].get<uint64_t>() > before_f5 && s["triangles"] == 6 && !s["loading"].get<bool>();
+  })) << "F5 did not reload the scene: " << state().dump();
 }
 
 }  // namespace

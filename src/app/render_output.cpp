@@ -30,6 +30,7 @@ Settings described_settings(const Settings& given, uint64_t frames_done) {
   described.frames = static_cast<int>(frames_done);
   described.time_limit = 0.0f;
   described.target_noise = 0.0f;
+  described.watch = true;  // the window's, not the image's
   return described;
 }
 

@@ -77,6 +77,7 @@ OpenedScene open_scene(const std::string& path, const SceneOptions& options, flo
     LoadedScene loaded = load_obj(path, load_options);
     scene = std::move(loaded.scene);
     opened.warnings = std::move(loaded.warnings);
+    opened.files = std::move(loaded.files);
     opened.outside_view = frame_box(scene.bounds(), 45.0f, aspect);
   }
   stage("building the BVH of " + std::to_string(scene.triangles.size()) + " triangles");

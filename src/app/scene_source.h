@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "app/options.h"
+#include "core/file_watch.h"
 #include "core/memory_budget.h"
 #include "render/traced_scene.h"
 #include "settings/settings.h"
@@ -21,6 +22,7 @@ struct OpenedScene {
   std::optional<CameraSpec> inside_view;  ///< from inside, when the model is a closed room
   std::vector<std::string> warnings;
   std::vector<std::string> notes;  ///< what a user should know about the view (a closed room, and how to leave it)
+  std::vector<WatchedFile> files;  ///< the files it was read from, stamped as read (none for the default scene)
 };
 
 /// What shapes the opened scene: the settings the table marks kReload, and where its camera starts.

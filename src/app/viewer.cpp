@@ -20,6 +20,7 @@
 #include "app/displayed_image.h"
 #include "app/scene_loading.h"
 #include "core/atomic_file.h"
+#include "core/file_watch.h"
 #include "display/display_pipeline.h"
 #include "display/split_view.h"
 #include "image/image_output.h"
@@ -79,6 +80,7 @@ class Viewer {
         tracer_(options.threads, turns_),
         right_tracer_(options.threads, turns_) {
     panel_.settings = options.settings;
+    panel_.scene_path = options.scene_path;
     panel_.paused = false;
     tracer_.set_frame_limit(panel_.settings.frame_limit);
     start_loading(options.scene_path, true);
@@ -104,6 +106,7 @@ class Viewer {
       handle_input();
       handle_actions(actions);
       reload_if_needed();
+      reload_if_files_changed();
       apply_to_tracer();
       draw();
       ImGui::Render();
@@ -131,6 +134,7 @@ class Viewer {
     glfwGetFramebufferSize(window_, &w, &h);
     const float aspect = w > 0 && h > 0 ? static_cast<float>(w) / static_cast<float>(h) : 1.0f;
     loading_ = std::make_unique<SceneLoading>(path, scene_options_of(panel_.settings), aspect);
+    ++scene_loads_;
     loading_is_initial_ = initial;
     scene_settings_ = panel_.settings;
   }
@@ -141,13 +145,17 @@ class Viewer {
     if (!opened) {
       // The old scene stays; the error goes to the panel.
       set_message("cannot load: " + loading_->error(), true);
+      watch_after_failure(loading_->path());
       loading_.reset();
+      reloading_same_scene_ = false;
       return;
     }
     const bool keep_camera = reloading_same_scene_;
     scene_path_ = loading_->path();
+    panel_.scene_path = scene_path_;
     loading_.reset();
     reloading_same_scene_ = false;
+    scene_watch_.watch(opened->files);
     scene_ = std::move(*opened);
     // The first scene starts from the camera the options gave, if any; a new scene from its own default view.
     home_camera_ = loading_is_initial_ ? camera_of(options_.settings, scene_.default_view) : scene_.default_view;
@@ -158,8 +166,38 @@ class Viewer {
     std::string message;
     for (const std::string& w : scene_.warnings) message += (message.empty() ? "warning: " : "; ") + w;
     for (const std::string& note : scene_.notes) message += (message.empty() ? "" : "; ") + note;
-    if (!message.empty()) set_message(message, false);
+    if (!message.empty())
+      set_message(message, false);
+    else if (keep_camera)
+      set_message("reloaded " + scene_path_, false);
     tracer_.set_scene(scene_.traced);
+  }
+
+  /// Loads the scene shown again from its files, keeping the camera (F5, the panel's Reload, or a change on disk).
+  /// Before any scene loaded (the first one failed), it tries that one again as a first load.
+  void reload_scene() {
+    if (loading_) return;  // the load in progress reads the files as they are now
+    reloading_same_scene_ = scene_.traced != nullptr;
+    start_loading(scene_path_, !scene_.traced);
+  }
+
+  /// With the watch setting on, reloads once the scene's files have changed on disk and stopped changing.
+  void reload_if_files_changed() {
+    if (loading_ || !panel_.settings.watch || !scene_watch_.changed(glfwGetTime())) return;
+    set_message(scene_path_ + " changed on disk: reloading", false);
+    reload_scene();
+  }
+
+  /// A load that failed leaves the scene shown as it was. Where it was that scene's own files (a reload, or the
+  /// first scene), they are watched again as they are now, so that the broken files are not reloaded over and over
+  /// and the next save (the fix) is.
+  void watch_after_failure(const std::string& failed_path) {
+    if (scene_.traced && failed_path != scene_path_) return;  // another file failed: the scene shown keeps its watch
+    std::vector<WatchedFile> files = scene_.traced ? scene_watch_.files() : std::vector<WatchedFile>{};
+    if (files.empty()) files.push_back({failed_path, {}});
+    for (WatchedFile& file : files) file.stamp = stamp_file(file.path);
+    scene_watch_.watch(std::move(files));
+    scene_path_ = failed_path;
   }
 
   // ---- input ------------------------------------------------------------------------------------------------
@@ -246,6 +284,9 @@ class Viewer {
                 up = down(GLFW_KEY_E) - down(GLFW_KEY_Q);
     if (forward != 0.0f || right != 0.0f || up != 0.0f)
       camera = fly(camera, forward * speed, right * speed, up * speed);
+    const bool f5 = down(GLFW_KEY_F5) > 0.0f;
+    if (f5 && !f5_was_down_) reload_scene();
+    f5_was_down_ = f5;
     const bool f = down(GLFW_KEY_F) > 0.0f, r = down(GLFW_KEY_R) > 0.0f;
     const bool i = down(GLFW_KEY_I) > 0.0f, o = down(GLFW_KEY_O) > 0.0f;
     if (f && !f_was_down_ && scene_.traced) camera = frame_bounds(camera, scene_.traced->scene.bounds(), aspect());
@@ -279,6 +320,8 @@ class Viewer {
       }
     }
     if (a.load_view) load_view(panel_.view_path);
+    if (a.open_scene) start_loading(panel_.scene_path, false);
+    if (a.reload_scene) reload_scene();
     if (scene_.traced && a.frame_scene && panel_.settings.camera)
       panel_.settings.camera = frame_bounds(*panel_.settings.camera, scene_.traced->scene.bounds(), aspect());
     if (scene_.traced && a.reset_camera) panel_.settings.camera = home_camera_;
@@ -503,6 +546,7 @@ class Viewer {
     state["triangles"] = panel_.triangles;
     state["automatic_ao_radius"] = panel_.automatic_ao_radius;
     state["loading"] = loading_ != nullptr;
+    state["scene_loads"] = scene_loads_;
     state["message"] = panel_.message;
     state["message_is_error"] = panel_.message_is_error;
     nlohmann::json widgets;
@@ -538,6 +582,9 @@ class Viewer {
   uint64_t display_frames_ = 0;
   double frame_seconds_ = 0.0;
   double last_cursor_x_ = 0.0, last_cursor_y_ = 0.0, last_key_time_ = 0.0;
+  FileWatch scene_watch_;  ///< the files the scene shown was read from
+  uint64_t scene_loads_ = 0;  ///< loads started, for the state file
+  bool f5_was_down_ = false;
   bool dragging_ = false, f_was_down_ = false, r_was_down_ = false, i_was_down_ = false, o_was_down_ = false;
   // Figures for the state file: display frame intervals and the time from a change to its first frame on screen.
   std::vector<double> frame_intervals_ms_, restart_latencies_ms_;

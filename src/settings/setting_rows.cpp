@@ -137,6 +137,12 @@ std::vector<Row> make_rows() {
                               E::kNone, [](auto& s) -> auto& { return s.target_noise; }, {0, 1e9});
   target_noise.always_described = false;
   table.push_back(target_noise);
+  Row watch = switch_row("watch",
+                         "window: reload the scene when its OBJ, MTL or texture files change on disk (the camera "
+                         "stays)",
+                         E::kNone, [](auto& s) -> auto& { return s.watch; }, false);
+  watch.always_described = false;
+  table.push_back(watch);
   table.push_back(compare_row());
   Row compare_split =
       real_row("compare-split", "where the A/B split's divider stands, as a share of the width from the left",

@@ -38,6 +38,7 @@ struct Settings {
   uint64_t frame_limit = 0;                 ///< the window stops accumulating after this many frames; 0: never
   float time_limit = 0.0f;    ///< seconds of tracing after which a render stops (frame in flight included); 0: never
   float target_noise = 0.0f;  ///< a render stops once the image's estimated relMSE falls below this; 0: never
+  bool watch = true;          ///< the window reloads the scene when its files change on disk
   /// A/B comparison: "SETTING=VALUE", the one setting the right side of a split view renders with; empty: none.
   std::string compare;
   float compare_split = 0.5f;  ///< where the split's divider stands, as a share of the image's width from the left

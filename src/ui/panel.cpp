@@ -352,6 +352,16 @@ void control_section(PanelModel& m, PanelActions& actions) {
 }
 
 void files_section(PanelModel& m, PanelActions& actions) {
+  char scene[1024];
+  std::snprintf(scene, sizeof scene, "%s", m.scene_path.c_str());
+  if (ImGui::InputTextWithHint("Scene file", "the default scene", scene, sizeof scene)) m.scene_path = scene;
+  if (ImGui::Button("Open")) actions.open_scene = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Reload (F5)")) actions.reload_scene = true;
+  record_widget(m, "reload-scene");
+  ImGui::SameLine();
+  ImGui::Checkbox("Reload when saved", &m.settings.watch);
+  setting_tooltip("watch");
   if (ImGui::Button("Save PNG")) actions.save_png = true;
   ImGui::SameLine();
   if (ImGui::Button("Save PFM")) actions.save_pfm = true;

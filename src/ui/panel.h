@@ -45,6 +45,7 @@ struct PanelModel {
   std::string message;               ///< the last saved path or error
   bool message_is_error = false;
   std::string view_path = "lueur-view.json";  ///< the file "Save view" and "Load view" use
+  std::string scene_path;  ///< the "Scene file" field: the scene shown (empty: the default one), or one typed to open
   double display_fps = 0.0;
   /// Where some widgets were drawn last frame (x0, y0, x1, y1 in window pixels, y down), by name ("pass-l2",
   /// "weight-l1", ...): the window reports them so that tests can click them with synthetic input.
@@ -57,6 +58,8 @@ struct PanelActions {
   bool save_view = false, load_view = false;
   bool frame_scene = false, reset_camera = false;
   bool inside_view = false, outside_view = false;  ///< a closed room's views (keys I and O)
+  bool open_scene = false;    ///< open the scene named in the "Scene file" field
+  bool reload_scene = false;  ///< read the scene shown again from its files (key F5)
 };
 
 /// Adds `noise` at `seconds` to the model's history when it is known and the history's last point is older.
