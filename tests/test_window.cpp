@@ -245,6 +245,42 @@ TEST_F(Window, KeepsDrawingWhileTheTracerWorks) {
   })) << "the traced frame never finished: the tracer was not working";
 }
 
+TEST_F(Window, ThePixelInspectorReadsThePixelUnderTheMouseAndARightClickPinsIt) {
+  const int panel_right = static_cast<int>(state()["widgets"]["panel"][2].get<float>());
+  const int x0 = panel_right + 50, y0 = 200, x1 = panel_right + 120, y1 = 300;
+  const auto at = [](const json& s, int x, int y) {
+    return s.contains("probe") && s["probe"]["x"] == x && s["probe"]["y"] == y;
+  };
+  xdotool("mousemove --window " + window_ + " " + std::to_string(x0) + " " + std::to_string(y0));
+  // The window and the film are both 512 x 512 once the previews are done: window pixel = film pixel.
+  ASSERT_TRUE(wait_for([&](const json& s) { return at(s, x0, y0) && !s["probe"]["pinned"].get<bool>(); }))
+      << state().dump();
+  // The image's value there is the weighted sum of the passes' (the report's weights, Le + L1 + L2).
+  const json probe = state()["probe"];
+  for (int c = 0; c < 3; ++c) {
+    const double expected = probe["layers"]["le"][c].get<double>() + 0.6 * probe["layers"]["l1"][c].get<double>() +
+                            0.4 * probe["layers"]["l2"][c].get<double>();
+    EXPECT_NEAR(probe["image"][c].get<double>(), expected, 1e-5 * (1.0 + expected)) << probe.dump();
+  }
+  EXPECT_GT(probe["layers"]["l1"][0].get<double>(), 0.0) << "the floor of the lit room, in the image";
+
+  // A right click pins it: the mouse moves on, the inspected pixel stays, and its frames keep coming.
+  xdotool("click 3");
+  ASSERT_TRUE(wait_for([&](const json& s) { return at(s, x0, y0) && s["probe"]["pinned"].get<bool>(); }))
+      << state().dump();
+  const uint64_t frames = state()["probe"]["frames"].get<uint64_t>();
+  xdotool("mousemove --window " + window_ + " " + std::to_string(x1) + " " + std::to_string(y1));
+  wait_for_viewer_frames(3.0);
+  EXPECT_TRUE(at(state(), x0, y0)) << state().dump();
+  EXPECT_TRUE(wait_for([&](const json& s) { return at(s, x0, y0) && s["probe"]["frames"].get<uint64_t>() > frames; }))
+      << "the pinned pixel's values did not follow the accumulation";
+
+  // Another right click lets it go: the inspector follows the mouse again.
+  xdotool("click 3");
+  EXPECT_TRUE(wait_for([&](const json& s) { return at(s, x1, y1) && !s["probe"]["pinned"].get<bool>(); }))
+      << state().dump();
+}
+
 /// The viewer started with an A/B split of the light choice, its divider at 0.7 of the width.
 class SplitWindow : public Window {
  protected:

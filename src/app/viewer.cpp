@@ -25,6 +25,7 @@
 #include "display/split_view.h"
 #include "image/image_output.h"
 #include "render/noise_estimate.h"
+#include "render/pixel_probe.h"
 #include "render/progressive_tracer.h"
 #include "settings/compare.h"
 #include "settings/setting_table.h"
@@ -33,6 +34,7 @@
 #include "ui/imgui_gl.h"
 #include "ui/mouse_buttons.h"
 #include "ui/panel.h"
+#include "ui/pixel_inspector.h"
 
 namespace lueur {
 namespace {
@@ -109,6 +111,7 @@ class Viewer {
       reload_if_files_changed();
       apply_to_tracer();
       draw();
+      update_probe();
       ImGui::Render();
       imgui_opengl_render();
       glfwSwapBuffers(window_);
@@ -502,6 +505,43 @@ class Viewer {
                   true);
   }
 
+  /// The pixel inspector's pixel: the one under the mouse while it is over the image (the last one while it is over
+  /// the panel), or the one a right click pinned, outlined. Read from the film shown on that side of an A/B split.
+  void update_probe() {
+    int width = 0, height = 0;
+    glfwGetWindowSize(window_, &width, &height);
+    double x = 0.0, y = 0.0;
+    glfwGetCursorPos(window_, &x, &y);
+    const bool over_image =
+        !ImGui::GetIO().WantCaptureMouse && x >= 0.0 && y >= 0.0 && x < width && y < height;
+    const bool right_button = events_of(window_).buttons.down[GLFW_MOUSE_BUTTON_RIGHT];
+    if (right_button && !right_button_was_down_ && over_image) {
+      panel_.probe_pinned = !panel_.probe_pinned;
+      if (panel_.probe_pinned) probe_point_ = {x / width, y / height};
+    }
+    right_button_was_down_ = right_button;
+    if (!panel_.probe_pinned && over_image) probe_point_ = {x / width, y / height};
+    panel_.probe.reset();
+    if (!probe_point_ || width <= 0 || height <= 0) return;
+    // The point is kept as a share of the window, so that a pinned pixel stays put through previews and resizes.
+    const double px = probe_point_->first * width, py = probe_point_->second * height;
+    const bool split = right_ && shown_right_.film.width == shown_.film.width &&
+                       shown_right_.film.height == shown_.film.height && shown_.film.width > 0;
+    const bool right_side = split && px >= panel_.settings.compare_split * width;
+    const TracerSnapshot& shown = right_side ? shown_right_ : shown_;
+    const Settings& settings = right_side ? *right_ : panel_.settings;
+    const std::optional<FilmPixel> pixel = film_pixel_at(px, py, width, height, shown.film.width, shown.film.height);
+    if (!pixel) return;
+    panel_.probe = probe_pixel(shown.film, *pixel, settings.render.enabled, settings.weights);
+    panel_.probe_right_side = right_side;
+    if (panel_.probe_pinned) {
+      const float sx = static_cast<float>(width) / static_cast<float>(shown.film.width);
+      const float sy = static_cast<float>(height) / static_cast<float>(shown.film.height);
+      draw_pixel_marker(static_cast<float>(pixel->x) * sx, static_cast<float>(pixel->y) * sy,
+                        static_cast<float>(pixel->x + 1) * sx, static_cast<float>(pixel->y + 1) * sy);
+    }
+  }
+
   void record_frame_time(Clock::time_point frame_start) {
     if (previous_frame_start_ != Clock::time_point{}) {
       // The interval between frames, as the user sees it (pacing included), over the last 600 frames.
@@ -547,6 +587,19 @@ class Viewer {
     state["automatic_ao_radius"] = panel_.automatic_ao_radius;
     state["loading"] = loading_ != nullptr;
     state["scene_loads"] = scene_loads_;
+    if (panel_.probe) {
+      const PixelProbe& probe = *panel_.probe;
+      nlohmann::json layers;
+      for (size_t l = 0; l < static_cast<size_t>(kLayerCount); ++l)
+        if (probe.layers[l]) layers[std::string(kLayerNames[l])] = {probe.layers[l]->r, probe.layers[l]->g, probe.layers[l]->b};
+      state["probe"] = {{"x", probe.pixel.x},
+                        {"y", probe.pixel.y},
+                        {"frames", probe.frames},
+                        {"pinned", panel_.probe_pinned},
+                        {"right_side", panel_.probe_right_side},
+                        {"image", {probe.combined.r, probe.combined.g, probe.combined.b}},
+                        {"layers", layers}};
+    }
     state["message"] = panel_.message;
     state["message_is_error"] = panel_.message_is_error;
     nlohmann::json widgets;
@@ -585,6 +638,8 @@ class Viewer {
   FileWatch scene_watch_;  ///< the files the scene shown was read from
   uint64_t scene_loads_ = 0;  ///< loads started, for the state file
   bool f5_was_down_ = false;
+  std::optional<std::pair<double, double>> probe_point_;  ///< the inspected point, as shares of the window's size
+  bool right_button_was_down_ = false;
   bool dragging_ = false, f_was_down_ = false, r_was_down_ = false, i_was_down_ = false, o_was_down_ = false;
   // Figures for the state file: display frame intervals and the time from a change to its first frame on screen.
   std::vector<double> frame_intervals_ms_, restart_latencies_ms_;

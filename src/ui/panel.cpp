@@ -11,6 +11,7 @@
 #include "render/indirect_light.h"
 #include "settings/compare.h"
 #include "settings/setting_table.h"
+#include "ui/pixel_inspector.h"
 
 namespace lueur {
 namespace {
@@ -426,6 +427,7 @@ PanelActions draw_panel(PanelModel& m) {
   if (ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) sampling_section(m);
   if (ImGui::CollapsingHeader("View and display", ImGuiTreeNodeFlags_DefaultOpen)) view_section(m.settings);
   if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) statistics_section(m);
+  if (ImGui::CollapsingHeader("Pixel", ImGuiTreeNodeFlags_DefaultOpen)) pixel_section(m);
   if (ImGui::CollapsingHeader("Noise (estimated relMSE)", ImGuiTreeNodeFlags_DefaultOpen)) noise_section(m);
   if (ImGui::CollapsingHeader("Compare (A/B split)", m.settings.compare.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
     compare_section(m);

@@ -7,10 +7,12 @@
 #include <array>
 #include <cstddef>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "render/noise_estimate.h"
+#include "render/pixel_probe.h"
 #include "render/progressive_tracer.h"
 #include "render/traced_scene.h"
 #include "settings/settings.h"
@@ -45,6 +47,10 @@ struct PanelModel {
   std::string message;               ///< the last saved path or error
   bool message_is_error = false;
   std::string view_path = "lueur-view.json";  ///< the file "Save view" and "Load view" use
+  /// The pixel inspector's pixel (render/pixel_probe.h): under the mouse, or pinned; none before the mouse is over
+  /// the image.
+  std::optional<PixelProbe> probe;
+  bool probe_pinned = false, probe_right_side = false;
   std::string scene_path;  ///< the "Scene file" field: the scene shown (empty: the default one), or one typed to open
   double display_fps = 0.0;
   /// Where some widgets were drawn last frame (x0, y0, x1, y1 in window pixels, y down), by name ("pass-l2",
