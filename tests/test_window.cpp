@@ -274,6 +274,8 @@ TEST_F(Window, ThePixelInspectorReadsThePixelUnderTheMouseAndARightClickPinsIt) 
   EXPECT_TRUE(at(state(), x0, y0)) << state().dump();
   EXPECT_TRUE(wait_for([&](const json& s) { return at(s, x0, y0) && s["probe"]["frames"].get<uint64_t>() > frames; }))
       << "the pinned pixel's values did not follow the accumulation";
+  EXPECT_TRUE(wait_for([](const json& s) { return s["probe"]["history"].get<int>() >= 2; }))
+      << "the convergence plot has no history: " << state().dump();
 
   // Another right click lets it go: the inspector follows the mouse again.
   xdotool("click 3");

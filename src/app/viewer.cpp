@@ -517,6 +517,7 @@ class Viewer {
     const bool right_button = events_of(window_).buttons.down[GLFW_MOUSE_BUTTON_RIGHT];
     if (right_button && !right_button_was_down_ && over_image) {
       panel_.probe_pinned = !panel_.probe_pinned;
+      panel_.probe_history.clear();
       if (panel_.probe_pinned) probe_point_ = {x / width, y / height};
     }
     right_button_was_down_ = right_button;
@@ -534,6 +535,7 @@ class Viewer {
     if (!pixel) return;
     panel_.probe = probe_pixel(shown.film, *pixel, settings.render.enabled, settings.weights);
     panel_.probe_right_side = right_side;
+    record_probe(panel_);
     if (panel_.probe_pinned) {
       const float sx = static_cast<float>(width) / static_cast<float>(shown.film.width);
       const float sy = static_cast<float>(height) / static_cast<float>(shown.film.height);
@@ -598,7 +600,8 @@ class Viewer {
                         {"pinned", panel_.probe_pinned},
                         {"right_side", panel_.probe_right_side},
                         {"image", {probe.combined.r, probe.combined.g, probe.combined.b}},
-                        {"layers", layers}};
+                        {"layers", layers},
+                        {"history", panel_.probe_history.size()}};
     }
     state["message"] = panel_.message;
     state["message_is_error"] = panel_.message_is_error;

@@ -25,6 +25,13 @@ struct NoisePoint {
   std::array<double, kPassCount + 1> rel_mse{};
 };
 
+/// A pinned pixel's values after some frames, for the inspector's plot: each pass's luminance (0 where it is not
+/// rendered), then the image's.
+struct ProbePoint {
+  uint64_t frames = 0;
+  std::array<float, kPassCount + 1> luminance{};
+};
+
 struct PanelModel {
   Settings settings;  ///< edited by the widgets
   bool paused = false;
@@ -51,6 +58,7 @@ struct PanelModel {
   /// the image.
   std::optional<PixelProbe> probe;
   bool probe_pinned = false, probe_right_side = false;
+  std::vector<ProbePoint> probe_history;  ///< the pinned pixel's, since it was pinned or the accumulation restarted
   std::string scene_path;  ///< the "Scene file" field: the scene shown (empty: the default one), or one typed to open
   double display_fps = 0.0;
   /// Where some widgets were drawn last frame (x0, y0, x1, y1 in window pixels, y down), by name ("pass-l2",

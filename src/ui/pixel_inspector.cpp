@@ -3,12 +3,53 @@
 
 #include <imgui.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
 namespace lueur {
 namespace {
 
 /// What each layer is called in the section (the names of --view, said the way the report says them).
 constexpr std::array<const char*, kLayerCount> kLayerLabels = {
     "Le", "L1", "L2", "AO", "L2 (screen L1)", "L2 (recomputed)", "", "L1 diffuse", "L2 (stored L1)", ""};
+
+/// The plot's colours: as the noise plot's, one per pass, the image in white.
+constexpr std::array<ImU32, kPassCount + 1> kColours = {IM_COL32(255, 220, 90, 255), IM_COL32(110, 200, 255, 255),
+                                                        IM_COL32(120, 235, 120, 255), IM_COL32(200, 160, 255, 255),
+                                                        IM_COL32(255, 255, 255, 255)};
+
+/// The pinned pixel's running averages against the frame count (log2 across, linear up): the passes settling.
+void convergence_plot(const std::vector<ProbePoint>& history) {
+  if (history.size() < 2) return;
+  const ImVec2 size(ImGui::GetContentRegionAvail().x, 90.0f);
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  ImGui::InvisibleButton("pixel-plot", size);
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->AddRect(origin, ImVec2(origin.x + size.x, origin.y + size.y), IM_COL32(120, 120, 120, 255));
+  const double f0 = std::log2(static_cast<double>(std::max<uint64_t>(history.front().frames, 1)));
+  const double f1 = std::max(std::log2(static_cast<double>(history.back().frames)), f0 + 1.0);
+  float top = 0.0f;
+  for (const ProbePoint& point : history)
+    for (const float v : point.luminance) top = std::max(top, v);
+  if (!(top > 0.0f) || !std::isfinite(top)) return;
+  top *= 1.05f;
+  const auto at = [&](const ProbePoint& point, size_t k) {
+    const float x = static_cast<float>((std::log2(static_cast<double>(point.frames)) - f0) / (f1 - f0));
+    const float y = std::clamp(point.luminance[k] / top, 0.0f, 1.0f);
+    return ImVec2(origin.x + 4.0f + x * (size.x - 8.0f), origin.y + size.y - 4.0f - y * (size.y - 8.0f));
+  };
+  for (size_t k = 0; k < kColours.size(); ++k)
+    for (size_t i = 1; i < history.size(); ++i)
+      draw->AddLine(at(history[i - 1], k), at(history[i], k), kColours[k], k == kPassCount ? 2.0f : 1.0f);
+  char label[96];
+  std::snprintf(label, sizeof label, "%.3g", static_cast<double>(top));
+  draw->AddText(ImVec2(origin.x + 3.0f, origin.y + 2.0f), IM_COL32(170, 170, 170, 255), label);
+  std::snprintf(label, sizeof label, "0   frames %llu .. %llu (log)",
+                static_cast<unsigned long long>(history.front().frames),
+                static_cast<unsigned long long>(history.back().frames));
+  draw->AddText(ImVec2(origin.x + 3.0f, origin.y + size.y - 16.0f), IM_COL32(170, 170, 170, 255), label);
+}
 
 void rgb_row(const char* label, const Vec3& v) {
   ImGui::Text("%-15s %8.4g %8.4g %8.4g", label, static_cast<double>(v.r), static_cast<double>(v.g),
@@ -31,13 +72,44 @@ void pixel_section(const PanelModel& m) {
   rgb_row("image", p.combined);
   for (size_t l = 0; l < static_cast<size_t>(kLayerCount); ++l) {
     if (!p.layers[l] || kLayerLabels[l][0] == '\0') continue;
-    rgb_row(kLayerLabels[l], *p.layers[l]);
+    if (l < static_cast<size_t>(kPassCount)) {  // a pass: in its plot colour
+      ImGui::PushStyleColor(ImGuiCol_Text, ImGui::ColorConvertU32ToFloat4(kColours[l]));
+      rgb_row(kLayerLabels[l], *p.layers[l]);
+      ImGui::PopStyleColor();
+    } else {
+      rgb_row(kLayerLabels[l], *p.layers[l]);
+    }
   }
   // The reuse fractions are shares of the bounce hits, not light.
   if (const std::optional<Vec3>& shares = p.layers[static_cast<size_t>(Layer::kReuseFraction)])
     ImGui::Text("L2's L1: %.0f%% screen, %.0f%% store, %.0f%% recomputed", 100.0 * shares->r, 100.0 * shares->g,
                 100.0 * shares->b);
-  if (m.probe_pinned) ImGui::TextDisabled("A right click in the image lets it go");
+  if (!m.probe_pinned) return;
+  convergence_plot(m.probe_history);
+  ImGui::TextDisabled("A right click in the image lets it go");
+}
+
+void record_probe(PanelModel& m) {
+  if (!m.probe_pinned || !m.probe) {
+    if (!m.probe_pinned) m.probe_history.clear();
+    return;
+  }
+  const PixelProbe& probe = *m.probe;
+  std::vector<ProbePoint>& history = m.probe_history;
+  if (!history.empty() && probe.frames < history.back().frames) history.clear();  // the accumulation restarted
+  if (!history.empty() && probe.frames == history.back().frames) return;
+  ProbePoint point;
+  point.frames = probe.frames;
+  for (size_t p = 0; p < static_cast<size_t>(kPassCount); ++p)
+    if (probe.layers[p]) point.luminance[p] = luminance(*probe.layers[p]);
+  point.luminance[kPassCount] = luminance(probe.combined);
+  // Bounded: once there are many points, every other one goes (the plot's axis is logarithmic anyway).
+  if (history.size() >= 512) {
+    size_t kept = 0;
+    for (size_t i = 0; i < history.size(); i += 2) history[kept++] = history[i];
+    history.resize(kept);
+  }
+  history.push_back(point);
 }
 
 void draw_pixel_marker(float x0, float y0, float x1, float y1) {

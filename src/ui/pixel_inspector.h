@@ -6,6 +6,10 @@
 
 namespace lueur {
 
+/// Adds the pinned pixel's values to the model's history when its frame count moved on (a lower count: the
+/// accumulation restarted, and the history with it); clears the history when no pixel is pinned.
+void record_probe(PanelModel& model);
+
 /// The "Pixel" section: the image's linear value at the inspected pixel and each rendered layer's average there.
 void pixel_section(const PanelModel& model);
 
