@@ -43,6 +43,8 @@ class Window : public ::testing::Test {
  protected:
   /// Options the viewer starts with besides the fixture's own.
   virtual std::vector<std::string> extra_arguments() const { return {}; }
+  /// Whether SetUp waits for a first traced frame (a viewer whose scene cannot load has none).
+  virtual bool renders_at_start() const { return true; }
 
   void SetUp() override {
     if (!std::getenv("DISPLAY")) GTEST_FAIL() << "no DISPLAY: CTest runs this test inside xvfb-run";
@@ -62,8 +64,12 @@ class Window : public ::testing::Test {
       ::execv(LUEUR_EXECUTABLE, argv.data());
       std::_Exit(127);
     }
-    ASSERT_TRUE(wait_for([](const json& s) { return s["frames"].get<int>() >= 1; }))
-        << "the viewer never rendered a frame";
+    if (renders_at_start())
+      ASSERT_TRUE(wait_for([](const json& s) { return s["frames"].get<int>() >= 1; }))
+          << "the viewer never rendered a frame";
+    else
+      ASSERT_TRUE(wait_for([](const json& s) { return s["display_frames"].get<int>() >= 1; }))
+          << "the viewer never drew";
     window_ = run_command("xdotool search --sync --onlyvisible --name '^Lueur$' | head -1");
     ASSERT_FALSE(window_.empty()) << "no window named Lueur";
   }
@@ -334,6 +340,24 @@ class ReloadWindow : public Window {
   std::string scene_dir_;
   int version_ = 0;
 };
+
+/// The same viewer started on a scene file that cannot be loaded.
+class BrokenSceneWindow : public ReloadWindow {
+ protected:
+  BrokenSceneWindow() { save(kFloor + "f 1 2 99\n"); }
+  bool renders_at_start() const override { return false; }
+};
+
+TEST_F(BrokenSceneWindow, TheFirstSceneIsLoadedOnceItIsMended) {
+  ASSERT_TRUE(wait_for([](const json& s) {
+    return s["message_is_error"].get<bool>() && s["message"].get<std::string>().find("out of range") != std::string::npos;
+  })) << state().dump();
+  EXPECT_EQ(state()["frames"], 0);
+  save(kFloor + kLight);
+  ASSERT_TRUE(wait_for([](const json& s) { return s["triangles"] == 4 && s["frames"].get<int>() >= 1; }))
+      << "the mended scene was not loaded: " << state().dump();
+  EXPECT_FALSE(state()["message_is_error"].get<bool>()) << state().dump();
+}
 
 TEST_F(ReloadWindow, ASavedSceneIsReloadedWithTheCameraKeptAndABrokenOneLeavesTheOldScene) {
   ASSERT_TRUE(wait_for([](const json& s) { return s["triangles"] == 4 && !s["loading"].get<bool>(); }))

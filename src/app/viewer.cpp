@@ -132,13 +132,16 @@ class Viewer {
 
  private:
   // ---- scenes -----------------------------------------------------------------------------------------------
-  void start_loading(const std::string& path, bool initial) {
+  /// Starts loading `path` (empty: the default scene) in the background; `keep_camera` when it is the scene shown,
+  /// read again. A load started before it is done is dropped.
+  void start_loading(const std::string& path, bool initial, bool keep_camera = false) {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
     const float aspect = w > 0 && h > 0 ? static_cast<float>(w) / static_cast<float>(h) : 1.0f;
     loading_ = std::make_unique<SceneLoading>(path, scene_options_of(panel_.settings), aspect);
     ++scene_loads_;
     loading_is_initial_ = initial;
+    reloading_same_scene_ = keep_camera;
     scene_settings_ = panel_.settings;
   }
 
@@ -180,8 +183,7 @@ class Viewer {
   /// Before any scene loaded (the first one failed), it tries that one again as a first load.
   void reload_scene() {
     if (loading_) return;  // the load in progress reads the files as they are now
-    reloading_same_scene_ = scene_.traced != nullptr;
-    start_loading(scene_path_, !scene_.traced);
+    start_loading(scene_path_, !scene_.traced, scene_.traced != nullptr);
   }
 
   /// With the watch setting on, reloads once the scene's files have changed on disk and stopped changing.
@@ -243,6 +245,10 @@ class Viewer {
         start_loading(path, false);
     }
     events.dropped.clear();
+    // F5 works with no scene too: after a first scene that failed to load, it tries again.
+    const bool f5 = !ImGui::GetIO().WantCaptureKeyboard && glfwGetKey(window_, GLFW_KEY_F5) == GLFW_PRESS;
+    if (f5 && !f5_was_down_) reload_scene();
+    f5_was_down_ = f5;
     if (drag_divider(events)) return;
     if (!panel_.settings.camera) {
       events.scroll = 0.0;
@@ -287,9 +293,6 @@ class Viewer {
                 up = down(GLFW_KEY_E) - down(GLFW_KEY_Q);
     if (forward != 0.0f || right != 0.0f || up != 0.0f)
       camera = fly(camera, forward * speed, right * speed, up * speed);
-    const bool f5 = down(GLFW_KEY_F5) > 0.0f;
-    if (f5 && !f5_was_down_) reload_scene();
-    f5_was_down_ = f5;
     const bool f = down(GLFW_KEY_F) > 0.0f, r = down(GLFW_KEY_R) > 0.0f;
     const bool i = down(GLFW_KEY_I) > 0.0f, o = down(GLFW_KEY_O) > 0.0f;
     if (f && !f_was_down_ && scene_.traced) camera = frame_bounds(camera, scene_.traced->scene.bounds(), aspect());
@@ -342,8 +345,7 @@ class Viewer {
       set_message("this build has no Embree (install libembree-dev and rebuild)", true);
       if (change_effect(scene_settings_, panel_.settings) != SettingEffect::kReload) return;
     }
-    reloading_same_scene_ = true;
-    start_loading(scene_path_, false);
+    start_loading(scene_path_, false, true);
   }
 
   /// The settings with the frames shown so far: what a saved view or image renders again.
