@@ -204,5 +204,40 @@ TEST_F(Cli, ExportedDefaultSceneMatchesTheCommittedAsset) {
             test::read_file(std::string(LUEUR_SOURCE_DIR) + "/assets/cornell-apple.mtl"));
 }
 
+TEST_F(Cli, AnExportedSceneRendersTheSameBytesAsTheSceneFromTheViewItPrints) {
+  // No emitter (so the light rig is added) and no normals (so smooth ones are computed): a shallow hexagonal
+  // pyramid, whose faces meet at less than the crease angle, above a floor.
+  const std::string scene = write("model.obj",
+                                  "v 0 1.3 0\nv 1 1 0\nv 0.5 1 0.866\nv -0.5 1 0.866\nv -1 1 0\nv -0.5 1 -0.866\n"
+                                  "v 0.5 1 -0.866\nf 1 3 2\nf 1 4 3\nf 1 5 4\nf 1 6 5\nf 1 7 6\nf 1 2 7\n"
+                                  "v -3 0 -3\nv 3 0 -3\nv 3 0 3\nv -3 0 3\nf 8 10 9\nf 8 11 10\n");
+  const std::string exported = dir_ + "/exported scene.obj";
+  const test::CommandResult r = test::run_lueur("'" + scene + "' --size 48x32 --export-scene '" + exported + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find(exported + "\n"), std::string::npos) << r.output;
+  const size_t at = r.output.find("--camera \"");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const size_t end = r.output.find('\n', at);
+  const std::string view_options = r.output.substr(at, end - at);  // --camera "..." --ao-radius R
+  const std::string obj = test::read_file(exported), mtl = test::read_file(dir_ + "/exported scene.mtl");
+  EXPECT_NE(obj.find("\nvn "), std::string::npos) << "the computed normals are written";
+  EXPECT_NE(mtl.find("lueur-sky-top"), std::string::npos) << "the light rig is written";
+
+  const std::string render = " --headless --size 48x32 --frames 3 --passes le,l1,l2,ao " + view_options;
+  const test::CommandResult original = test::run_lueur("'" + scene + "'" + render + " --out '" + dir_ + "/a.pfm'");
+  const test::CommandResult again = test::run_lueur("'" + exported + "'" + render + " --out '" + dir_ + "/b.pfm'");
+  ASSERT_EQ(original.exit_code, 0) << original.output;
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_EQ(again.output.find("warning"), std::string::npos) << "the export needs no rig: " << again.output;
+  EXPECT_TRUE(test::read_file(dir_ + "/a.pfm") == test::read_file(dir_ + "/b.pfm")) << "the images differ";
+}
+
+TEST_F(Cli, AnExportToAFolderThatDoesNotExistIsOneLine) {
+  const test::CommandResult r = test::run_lueur("--export-scene '" + dir_ + "/absent/scene.obj'");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("lueur: error: cannot write"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find('\n'), r.output.size() - 1) << r.output;
+}
+
 }  // namespace
 }  // namespace lueur

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <array>
 #include <random>
 #include <string>
 
@@ -106,6 +107,67 @@ TEST(ObjWriter, DefaultLightAndDefaultMaterialRoundTrip) {
     EXPECT_EQ(second.scene.materials[i].ke, first.materials[i].ke);
   }
   EXPECT_EQ(second.scene.emitters, first.emitters);
+}
+
+/// The float's bits: equal bits, not merely equal values (0 and -0 differ).
+uint32_t bits(float x) {
+  uint32_t b = 0;
+  std::memcpy(&b, &x, 4);
+  return b;
+}
+
+TEST(ObjWriter, NormalsTextureCoordinatesAndMapsRoundTripBitForBit) {
+  // A cube with smooth normals computed on loading (a file without vn), and a textured quad with a cutout.
+  Scene scene = load_obj_from_text(cube_obj(true), "", "cube.obj").scene;
+  ASSERT_FALSE(scene.normals.empty());
+  // Unit normals in every direction, as smoothing computes them: most are not exactly of length 1 in float, and
+  // must read back with the bits they were written with, not divided by a length one ulp away from 1.
+  std::mt19937 rng(7);
+  std::normal_distribution<float> gaussian;
+  for (int i = 0; i < 1000; ++i) scene.normals.push_back(glm::normalize(Vec3(gaussian(rng), gaussian(rng), gaussian(rng))));
+  const uint32_t first_new = static_cast<uint32_t>(scene.positions.size());
+  for (const Vec3& p : {Vec3(0, 3, 0), Vec3(1, 3, 0), Vec3(1, 3, 1), Vec3(0, 3, 1)}) scene.positions.push_back(p);
+  for (const Vec2& t : {Vec2(0, 0), Vec2(2.5f, 0), Vec2(2.5f, 1.0f / 3.0f), Vec2(-0.0f, 1e-9f)})
+    scene.texcoords.push_back(t);
+  Material leaves;
+  leaves.name = "leaves";
+  leaves.diffuse_map = "textures/leaves.png";
+  leaves.alpha_map = "textures/leaves mask.png";
+  scene.materials.push_back(leaves);
+  const uint32_t leaves_id = static_cast<uint32_t>(scene.materials.size() - 1);
+  for (const auto& corners : {std::array<uint32_t, 3>{0, 1, 2}, std::array<uint32_t, 3>{0, 2, 3}}) {
+    Triangle t;
+    for (int k = 0; k < 3; ++k) {
+      t.v[k] = first_new + corners[static_cast<size_t>(k)];
+      t.t[k] = corners[static_cast<size_t>(k)];
+    }
+    t.material = leaves_id;
+    scene.triangles.push_back(t);
+  }
+
+  const std::string dir = test::make_temp_dir("writer-normals");
+  write_obj(scene, dir + "/export.obj");
+  const LoadedScene loaded = load_obj(dir + "/export.obj");
+  const Scene& back = loaded.scene;
+  ASSERT_EQ(back.normals.size(), scene.normals.size());
+  for (size_t i = 0; i < scene.normals.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      ASSERT_EQ(bits(back.normals[i][k]), bits(scene.normals[i][k])) << "normal " << i << " component " << k;
+  ASSERT_EQ(back.texcoords.size(), scene.texcoords.size());
+  for (size_t i = 0; i < scene.texcoords.size(); ++i)
+    for (int k = 0; k < 2; ++k)
+      ASSERT_EQ(bits(back.texcoords[i][k]), bits(scene.texcoords[i][k])) << "texcoord " << i << " component " << k;
+  ASSERT_EQ(back.triangles.size(), scene.triangles.size());
+  for (size_t i = 0; i < scene.triangles.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(back.triangles[i].v[k], scene.triangles[i].v[k]) << i;
+      EXPECT_EQ(back.triangles[i].n[k], scene.triangles[i].n[k]) << i;
+      EXPECT_EQ(back.triangles[i].t[k], scene.triangles[i].t[k]) << i;
+    }
+  const Material& maps = back.materials.at(leaves_id);
+  EXPECT_EQ(maps.diffuse_map, "textures/leaves.png");
+  EXPECT_EQ(maps.alpha_map, "textures/leaves mask.png");
+  EXPECT_TRUE(has_warning(loaded, "leaves.png")) << "the map is named beside the export, where it is not";
 }
 
 }  // namespace

@@ -96,6 +96,11 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv, const Progra
   app.add_option("--export-default-scene", o.export_default_scene,
                  "write the embedded default scene as OBJ + MTL to FILE.obj and exit")
       ->type_name("FILE");
+  app.add_option("--export-scene", o.export_scene,
+                 "write the scene as Lueur renders it (with the shading normals it computed and the light rig it "
+                 "added) as OBJ + MTL to FILE.obj, print the view it opens with as a --camera option, and exit; "
+                 "another renderer can then render what Lueur does")
+      ->type_name("FILE");
   app.add_option("--gl", gl,
                  "headless PNG through the GL display shaders: egl|osmesa|auto (EGL, else OSMesa) or none (CPU, "
                  "default)")
@@ -144,7 +149,7 @@ std::optional<AppOptions> parse_command_line(int argc, char** argv, const Progra
     throw UsageError("--ui draws the panel through GL: add --gl egl|osmesa|auto");
   if (!o.headless && (o.checkpoint_seconds > 0.0 || !o.resume_path.empty()))
     throw UsageError(std::string(o.resume_path.empty() ? "--checkpoint" : "--resume") + " needs --headless");
-  if (o.headless && o.out_path.empty() && o.export_default_scene.empty())
+  if (o.headless && o.out_path.empty() && o.export_default_scene.empty() && o.export_scene.empty())
     throw UsageError("--headless needs --out FILE");
   return o;
 }

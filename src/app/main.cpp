@@ -6,6 +6,7 @@
 
 #include "app/headless.h"
 #include "app/options.h"
+#include "app/scene_export.h"
 #include "app/viewer.h"
 #include "core/atomic_file.h"
 #include "scene/default_scene.h"
@@ -20,6 +21,10 @@ int main(int argc, char** argv) {
     if (!options->export_default_scene.empty()) {
       write_obj(make_default_scene(), options->export_default_scene);
       std::printf("%s\n", options->export_default_scene.c_str());
+      return 0;
+    }
+    if (!options->export_scene.empty()) {
+      export_scene(*options);
       return 0;
     }
     if (!options->headless) return run_viewer(*options);

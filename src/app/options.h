@@ -26,6 +26,7 @@ struct AppOptions {
   bool ui = false;                    ///< draw the panel into the headless screenshot
   std::string view_file;              ///< --view-file: a view saved by the window
   std::string export_default_scene;   ///< when set: write the embedded scene as OBJ + MTL there and exit
+  std::string export_scene;  ///< when set: write the scene as it is rendered (rig, normals) as OBJ + MTL there and exit
   std::string state_file;             ///< --state-file: the window writes its view and statistics there (for tests)
   double checkpoint_seconds = 0.0;    ///< headless: write the image so far and the resume state at this interval
   std::string resume_path;            ///< headless: go on from this resume state (written by --checkpoint)

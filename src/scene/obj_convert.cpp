@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <optional>
 #include <string_view>
 #include <unordered_set>
@@ -73,7 +74,7 @@ void gather_texcoords(const tinyobj::attrib_t& attrib, Scene& scene) {
   for (size_t i = 0; i < count; ++i) scene.texcoords.emplace_back(attrib.texcoords[2 * i], attrib.texcoords[2 * i + 1]);
 }
 
-/// File normals, normalised; unusable ones (zero, NaN, overflow) leave their corners on the geometric normal.
+/// File normals, normalised (those already of unit length kept bit for bit); unusable ones (zero, NaN, overflow) leave their corners on the geometric normal.
 /// Returns, per file normal, its index in scene.normals or kNoNormal.
 std::vector<uint32_t> gather_normals(const tinyobj::attrib_t& attrib, const std::string& label, Scene& scene,
                                      std::vector<std::string>& warnings) {
@@ -85,7 +86,10 @@ std::vector<uint32_t> gather_normals(const tinyobj::attrib_t& attrib, const std:
     const float length = glm::length(n);
     if (length > 0.0f && std::isfinite(length) && is_finite(n / length)) {
       normal_remap[i] = static_cast<uint32_t>(scene.normals.size());
-      scene.normals.push_back(n / length);
+      // A normal of unit length up to float rounding is kept as written: dividing by its length would move its last
+      // bits, and a scene written out (--export-scene) would not read back as the same scene.
+      const bool unit = std::abs(length - 1.0f) <= 4.0f * std::numeric_limits<float>::epsilon();
+      scene.normals.push_back(unit ? n : n / length);
     } else {
       ++unusable_normals;
     }

@@ -1,4 +1,5 @@
-// OBJ + MTL export: positions, faces grouped into runs of one material, and Kd/Ks/Ns/Ke materials.
+// OBJ + MTL export: positions, shading normals, texture coordinates, faces grouped into runs of one material, and
+// Kd/Ks/Ns/Ke materials with their texture maps.
 // Depends on core (atomic writes) and scene only; never on tinyobjloader, GL or the render passes.
 #include "scene/obj_writer.h"
 
@@ -38,6 +39,24 @@ std::vector<std::string> usable_names(const std::vector<Material>& materials) {
   return names;
 }
 
+/// Whether all three corners of a triangle carry an index (a face in OBJ gives one to every corner or to none).
+bool all_given(const uint32_t (&indices)[3], uint32_t none) {
+  return indices[0] != none && indices[1] != none && indices[2] != none;
+}
+
+/// One corner of a face: "v", "v/t", "v//n" or "v/t/n", indices from 1.
+void append_corner(std::string& out, uint32_t v, uint32_t t, uint32_t n, bool with_t, bool with_n) {
+  out += ' ';
+  out += std::to_string(v + 1);
+  if (!with_t && !with_n) return;
+  out += '/';
+  if (with_t) out += std::to_string(t + 1);
+  if (with_n) {
+    out += '/';
+    out += std::to_string(n + 1);
+  }
+}
+
 }  // namespace
 
 void write_obj(const Scene& scene, const std::string& obj_path) {
@@ -57,6 +76,9 @@ void write_obj(const Scene& scene, const std::string& obj_path) {
     const int n = std::snprintf(buffer, sizeof buffer, "Ns %.9g\n", static_cast<double>(m.ns));
     mtl.append(buffer, static_cast<size_t>(n));
     append_format(mtl, "Ke %.9g %.9g %.9g\n", m.ke.r, m.ke.g, m.ke.b);
+    // The maps as the scene's MTL named them: relative to its folder, so they are found when the export lies there.
+    if (!m.diffuse_map.empty()) mtl += "map_Kd " + m.diffuse_map + "\n";
+    if (!m.alpha_map.empty()) mtl += "map_d " + m.alpha_map + "\n";
   }
 
   std::string obj;
@@ -70,16 +92,24 @@ void write_obj(const Scene& scene, const std::string& obj_path) {
   }
   obj += "mtllib " + escaped + "\n";
   for (const Vec3& p : scene.positions) append_format(obj, "v %.9g %.9g %.9g\n", p.x, p.y, p.z);
+  for (const Vec3& n : scene.normals) append_format(obj, "vn %.9g %.9g %.9g\n", n.x, n.y, n.z);
+  for (const Vec2& t : scene.texcoords) {
+    char buffer[64];
+    const int n = std::snprintf(buffer, sizeof buffer, "vt %.9g %.9g\n", static_cast<double>(t.x),
+                                static_cast<double>(t.y));
+    obj.append(buffer, static_cast<size_t>(n));
+  }
 
   uint32_t current = 0xffffffffu;
-  char buffer[80];
   for (const Triangle& t : scene.triangles) {
     if (t.material != current && t.material < names.size()) {
       current = t.material;
       obj += "usemtl " + names[current] + "\n";
     }
-    const int n = std::snprintf(buffer, sizeof buffer, "f %u %u %u\n", t.v[0] + 1, t.v[1] + 1, t.v[2] + 1);
-    obj.append(buffer, static_cast<size_t>(n));
+    const bool with_t = all_given(t.t, kNoTexcoord), with_n = all_given(t.n, kNoNormal);
+    obj += 'f';
+    for (int k = 0; k < 3; ++k) append_corner(obj, t.v[k], t.t[k], t.n[k], with_t, with_n);
+    obj += '\n';
   }
 
   // The MTL goes first so that a reader never sees an OBJ whose material file does not exist yet.
