@@ -12,6 +12,7 @@
 #include "settings/compare.h"
 #include "settings/setting_table.h"
 #include "ui/pixel_inspector.h"
+#include "ui/plot_colours.h"
 
 namespace lueur {
 namespace {
@@ -196,11 +197,8 @@ void view_section(Settings& v) {
 
 /// Each pass's estimated relMSE and the combined image's, and how they fell with time on log-log axes.
 void noise_section(const PanelModel& m) {
-  static const std::array<ImU32, kPassCount + 1> kColours = {IM_COL32(255, 220, 90, 255), IM_COL32(110, 200, 255, 255),
-                                                             IM_COL32(120, 235, 120, 255), IM_COL32(200, 160, 255, 255),
-                                                             IM_COL32(255, 255, 255, 255)};
-  const auto line = [&](size_t k, const char* name, const NoiseEstimate& e) {
-    ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(kColours[k]), "%-6s", name);
+    const auto line = [&](size_t k, const char* name, const NoiseEstimate& e) {
+    ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(kPlotColours[k]), "%-6s", name);
     ImGui::SameLine();
     if (e.known)
       ImGui::Text("%.3g  (variance ~ frames^-%.2f)", e.rel_mse, e.exponent);
@@ -246,7 +244,7 @@ void noise_section(const PanelModel& m) {
         continue;
       }
       const ImVec2 here = at(point.seconds, point.rel_mse[k]);
-      if (has_previous) draw->AddLine(previous, here, kColours[k], k == kPassCount ? 2.0f : 1.0f);
+      if (has_previous) draw->AddLine(previous, here, kPlotColours[k], k == kPassCount ? 2.0f : 1.0f);
       previous = here;
       has_previous = true;
     }

@@ -7,17 +7,14 @@
 #include <cmath>
 #include <cstdio>
 
+#include "ui/plot_colours.h"
+
 namespace lueur {
 namespace {
 
 /// What each layer is called in the section (the names of --view, said the way the report says them).
 constexpr std::array<const char*, kLayerCount> kLayerLabels = {
     "Le", "L1", "L2", "AO", "L2 (screen L1)", "L2 (recomputed)", "", "L1 diffuse", "L2 (stored L1)", ""};
-
-/// The plot's colours: as the noise plot's, one per pass, the image in white.
-constexpr std::array<ImU32, kPassCount + 1> kColours = {IM_COL32(255, 220, 90, 255), IM_COL32(110, 200, 255, 255),
-                                                        IM_COL32(120, 235, 120, 255), IM_COL32(200, 160, 255, 255),
-                                                        IM_COL32(255, 255, 255, 255)};
 
 /// The pinned pixel's running averages against the frame count (log2 across, linear up): the passes settling.
 void convergence_plot(const std::vector<ProbePoint>& history) {
@@ -39,9 +36,13 @@ void convergence_plot(const std::vector<ProbePoint>& history) {
     const float y = std::clamp(point.luminance[k] / top, 0.0f, 1.0f);
     return ImVec2(origin.x + 4.0f + x * (size.x - 8.0f), origin.y + size.y - 4.0f - y * (size.y - 8.0f));
   };
-  for (size_t k = 0; k < kColours.size(); ++k)
+  for (size_t k = 0; k < kPlotColours.size(); ++k) {
+    // A pass that is not rendered (or gives this pixel nothing) would only draw along the bottom.
+    if (std::all_of(history.begin(), history.end(), [k](const ProbePoint& p) { return p.luminance[k] == 0.0f; }))
+      continue;
     for (size_t i = 1; i < history.size(); ++i)
-      draw->AddLine(at(history[i - 1], k), at(history[i], k), kColours[k], k == kPassCount ? 2.0f : 1.0f);
+      draw->AddLine(at(history[i - 1], k), at(history[i], k), kPlotColours[k], k == kPassCount ? 2.0f : 1.0f);
+  }
   char label[96];
   std::snprintf(label, sizeof label, "%.3g", static_cast<double>(top));
   draw->AddText(ImVec2(origin.x + 3.0f, origin.y + 2.0f), IM_COL32(170, 170, 170, 255), label);
@@ -73,7 +74,7 @@ void pixel_section(const PanelModel& m) {
   for (size_t l = 0; l < static_cast<size_t>(kLayerCount); ++l) {
     if (!p.layers[l] || kLayerLabels[l][0] == '\0') continue;
     if (l < static_cast<size_t>(kPassCount)) {  // a pass: in its plot colour
-      ImGui::PushStyleColor(ImGuiCol_Text, ImGui::ColorConvertU32ToFloat4(kColours[l]));
+      ImGui::PushStyleColor(ImGuiCol_Text, ImGui::ColorConvertU32ToFloat4(kPlotColours[l]));
       rgb_row(kLayerLabels[l], *p.layers[l]);
       ImGui::PopStyleColor();
     } else {
