@@ -1,8 +1,12 @@
 // The lueur executable end to end: bad input of every kind gives one line naming the problem and exit status 2,
 // with no output file left behind; good input writes PNG, PFM and EXR and prints the path.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <filesystem>
 #include <fstream>
+#include <utility>
+#include <vector>
 
 #include "image/image_output.h"
 #include "test_support.h"
@@ -232,11 +236,26 @@ TEST_F(Cli, AnExportedSceneRendersTheSameBytesAsTheSceneFromTheViewItPrints) {
   EXPECT_TRUE(test::read_file(dir_ + "/a.pfm") == test::read_file(dir_ + "/b.pfm")) << "the images differ";
 }
 
-TEST_F(Cli, AnExportToAFolderThatDoesNotExistIsOneLine) {
-  const test::CommandResult r = test::run_lueur("--export-scene '" + dir_ + "/absent/scene.obj'");
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("lueur: error: cannot write"), std::string::npos) << r.output;
-  EXPECT_EQ(r.output.find('\n'), r.output.size() - 1) << r.output;
+TEST_F(Cli, AnExportThatCannotBeWrittenIsOneLineAndLeavesNothing) {
+  ASSERT_EQ(::mkdir((dir_ + "/folder.obj").c_str(), 0755), 0);
+  for (const auto& [path, why] : {std::pair<std::string, std::string>{dir_ + "/absent/scene.obj", "no directory"},
+                                  {dir_ + "/folder.obj", "it is a directory"},
+                                  {dir_ + "/scene.mtl", "an export is an OBJ file"},
+                                  {dir_ + "/scene", "an export is an OBJ file"}}) {
+    for (const char* option : {"--export-scene", "--export-default-scene"}) {
+      const test::CommandResult r = test::run_lueur(std::string(option) + " '" + path + "'");
+      EXPECT_EQ(r.exit_code, 2) << r.output;
+      EXPECT_EQ(r.output, "lueur: error: cannot write '" + path + "': " + why +
+                              (why == "no directory" ? " '" + dir_ + "/absent'" : why == "an export is an OBJ file"
+                                                                                       ? " (name it FILE.obj)"
+                                                                                       : "") +
+                              "\n");
+    }
+  }
+  // Nothing was written: no MTL beside a refused OBJ (the folder made above is all there is).
+  std::vector<std::string> left;
+  for (const auto& entry : std::filesystem::directory_iterator(dir_)) left.push_back(entry.path().filename().string());
+  EXPECT_EQ(left, std::vector<std::string>{"folder.obj"});
 }
 
 }  // namespace

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
     const std::optional<AppOptions> options = parse_command_line(argc, argv);
     if (!options) return 0;
     if (!options->export_default_scene.empty()) {
+      check_export_path(options->export_default_scene);
       write_obj(make_default_scene(), options->export_default_scene);
       std::printf("%s\n", options->export_default_scene.c_str());
       return 0;
