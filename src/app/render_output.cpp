@@ -149,6 +149,10 @@ FrameResult render_frame_pair(const TracedScene& traced, const Camera& camera, c
 void check_output_path(const std::string& path) {
   if (!is_supported_image_path(path))
     throw IoError("cannot write '" + path + "': unknown image format (use .png, .pfm or .exr)");
+  check_writable_path(path);
+}
+
+void check_writable_path(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (fs::is_directory(path, ec)) throw IoError("cannot write '" + path + "': it is a directory");

@@ -60,6 +60,10 @@ RenderJob prepare_render_job(const AppOptions& options, bool writes_output = tru
 /// Refuses an output that could never be written before spending minutes rendering it. Throws IoError.
 void check_output_path(const std::string& path);
 
+/// The part of that check that holds for any file Lueur writes: not a directory, in a directory that exists and is
+/// writable. Throws IoError ("cannot write 'PATH': ...").
+void check_writable_path(const std::string& path);
+
 /// Refuses an image whose buffers the machine cannot hold, before anything is loaded or allocated; returns what
 /// is left of the budget for the scene. Throws UsageError.
 MemoryBudget reserve_render_memory(const RenderSettings& settings, const RenderSettings* right);

@@ -1,13 +1,12 @@
 // Writing the scene as it is rendered (see scene_export.h).
 #include "app/scene_export.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
 
+#include "app/render_output.h"
 #include "app/scene_source.h"
 #include "core/atomic_file.h"
 #include "core/memory_budget.h"
@@ -23,13 +22,7 @@ void check_export_path(const std::string& obj_path) {
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (extension != ".obj") throw IoError("cannot write '" + obj_path + "': an export is an OBJ file (name it FILE.obj)");
-  std::error_code ec;
-  if (fs::is_directory(obj_path, ec)) throw IoError("cannot write '" + obj_path + "': it is a directory");
-  fs::path dir = fs::path(obj_path).parent_path();
-  if (dir.empty()) dir = ".";
-  if (!fs::is_directory(dir, ec))
-    throw IoError("cannot write '" + obj_path + "': no directory '" + dir.string() + "'");
-  if (::access(dir.c_str(), W_OK) != 0) throw IoError("cannot write '" + obj_path + "': directory is not writable");
+  check_writable_path(obj_path);
 }
 
 void export_scene(const AppOptions& options) {

@@ -489,9 +489,7 @@ class Viewer {
     if (w <= 0 || h <= 0) return;
     const Settings& shown = panel_.settings;
     if (shown_.film.width > 0) pipeline_.update(shown_.film, shown_.version, shown);
-    // The split shows once the right side has a frame of the same size as the left's.
-    const bool split = right_ && shown_.film.width > 0 && shown_right_.film.width == shown_.film.width &&
-                       shown_right_.film.height == shown_.film.height;
+    const bool split = split_shown();
     if (split) right_pipeline_.update(shown_right_.film, shown_right_.version, *right_);
     gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl_.ClearColor(0.0f, 0.0f, 0.0f, 1.0f);
@@ -505,6 +503,12 @@ class Viewer {
       set_message("view " + std::string(kLayerNames[static_cast<size_t>(*shown.layer)]) +
                       " is not rendered with these passes and reuse settings",
                   true);
+  }
+
+  /// Whether the A/B split shows: once the right side has a frame of the same size as the left's.
+  bool split_shown() const {
+    return right_ && shown_.film.width > 0 && shown_right_.film.width == shown_.film.width &&
+           shown_right_.film.height == shown_.film.height;
   }
 
   /// The pixel inspector's pixel: the one under the mouse while it is over the image (the last one while it is over
@@ -528,9 +532,7 @@ class Viewer {
     if (!probe_point_ || width <= 0 || height <= 0) return;
     // The point is kept as a share of the window, so that a pinned pixel stays put through previews and resizes.
     const double px = probe_point_->first * width, py = probe_point_->second * height;
-    const bool split = right_ && shown_right_.film.width == shown_.film.width &&
-                       shown_right_.film.height == shown_.film.height && shown_.film.width > 0;
-    const bool right_side = split && px >= panel_.settings.compare_split * width;
+    const bool right_side = split_shown() && px >= panel_.settings.compare_split * width;
     const TracerSnapshot& shown = right_side ? shown_right_ : shown_;
     const Settings& settings = right_side ? *right_ : panel_.settings;
     const std::optional<FilmPixel> pixel = film_pixel_at(px, py, width, height, shown.film.width, shown.film.height);

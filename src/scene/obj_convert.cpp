@@ -74,8 +74,8 @@ void gather_texcoords(const tinyobj::attrib_t& attrib, Scene& scene) {
   for (size_t i = 0; i < count; ++i) scene.texcoords.emplace_back(attrib.texcoords[2 * i], attrib.texcoords[2 * i + 1]);
 }
 
-/// File normals, normalised (those already of unit length kept bit for bit); unusable ones (zero, NaN, overflow) leave their corners on the geometric normal.
-/// Returns, per file normal, its index in scene.normals or kNoNormal.
+/// File normals, normalised (those already of unit length kept bit for bit); unusable ones (zero, NaN, overflow)
+/// leave their corners on the geometric normal. Returns, per file normal, its index in scene.normals or kNoNormal.
 std::vector<uint32_t> gather_normals(const tinyobj::attrib_t& attrib, const std::string& label, Scene& scene,
                                      std::vector<std::string>& warnings) {
   const size_t normal_count = attrib.normals.size() / 3;

@@ -387,12 +387,7 @@ void record_noise(PanelModel& model, const FilmNoise& noise, double seconds) {
     }
   if (noise.image.known) point.rel_mse[kPassCount] = noise.image.rel_mse;
   if (!known || (!model.noise_history.empty() && model.noise_history.back().seconds >= seconds)) return;
-  // Bounded: once there are many points, every other one goes.
-  if (model.noise_history.size() >= 512) {
-    size_t kept = 0;
-    for (size_t i = 0; i < model.noise_history.size(); i += 2) model.noise_history[kept++] = model.noise_history[i];
-    model.noise_history.resize(kept);
-  }
+  thin_history(model.noise_history);
   model.noise_history.push_back(point);
 }
 

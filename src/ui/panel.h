@@ -76,6 +76,15 @@ struct PanelActions {
   bool reload_scene = false;  ///< read the scene shown again from its files (key F5)
 };
 
+/// Keeps a plot's history bounded: once it holds `limit` points, every other one goes (its start and its shape stay).
+template <typename Point>
+void thin_history(std::vector<Point>& history, size_t limit = 512) {
+  if (history.size() < limit) return;
+  size_t kept = 0;
+  for (size_t i = 0; i < history.size(); i += 2) history[kept++] = history[i];
+  history.resize(kept);
+}
+
 /// Adds `noise` at `seconds` to the model's history when it is known and the history's last point is older.
 void record_noise(PanelModel& model, const FilmNoise& noise, double seconds);
 

@@ -104,12 +104,7 @@ void record_probe(PanelModel& m) {
   for (size_t p = 0; p < static_cast<size_t>(kPassCount); ++p)
     if (probe.layers[p]) point.luminance[p] = luminance(*probe.layers[p]);
   point.luminance[kPassCount] = luminance(probe.combined);
-  // Bounded: once there are many points, every other one goes (the plot's axis is logarithmic anyway).
-  if (history.size() >= 512) {
-    size_t kept = 0;
-    for (size_t i = 0; i < history.size(); i += 2) history[kept++] = history[i];
-    history.resize(kept);
-  }
+  thin_history(history);
   history.push_back(point);
 }
 
