@@ -128,7 +128,7 @@ TEST_F(Cli, WritesPngPfmAndExrAndPrintsThePath) {
 }
 
 TEST_F(Cli, DefaultSceneRendersWithEveryStrategy) {
-  for (const char* lights : {"all", "uniform", "area", "power"}) {
+  for (const char* lights : {"all", "uniform", "area", "power", "importance"}) {
     const std::string out = dir_ + "/default-" + lights + ".png";
     const test::CommandResult r = test::run_lueur(
         std::string("--headless --size 24x24 --frames 1 --l1-rays 2 --lights ") + lights + " --out '" + out + "'");

@@ -131,7 +131,7 @@ TEST_P(ClosedBox, RenderedFilmAveragesToRhoLe) {
 
 INSTANTIATE_TEST_SUITE_P(Lights, ClosedBox,
                          ::testing::Values(LightStrategy::kAll, LightStrategy::kUniform, LightStrategy::kArea,
-                                           LightStrategy::kPower),
+                                           LightStrategy::kPower, LightStrategy::kImportance),
                          test::strategy_test_name);
 
 TEST(DirectLight, MatchesLambertPolygonFormulaUnderARectangularLight) {
@@ -141,7 +141,7 @@ TEST(DirectLight, MatchesLambertPolygonFormulaUnderARectangularLight) {
                                          {0.5 * w, height, -0.5 * h},
                                          {0.5 * w, height, 0.5 * h},
                                          {-0.5 * w, height, 0.5 * h}};
-  for (const LightStrategy strategy : {LightStrategy::kAll, LightStrategy::kArea}) {
+  for (const LightStrategy strategy : {LightStrategy::kAll, LightStrategy::kArea, LightStrategy::kImportance}) {
     for (const Vec3 p : {Vec3(0.0f), Vec3(0.3f, 0.0f, 0.1f), Vec3(1.2f, 0.0f, -0.4f), Vec3(-2.0f, 0.0f, 1.5f)}) {
       // The floor at p, seen straight from above.
       const std::optional<SurfacePoint> sp = test::surface_below(*traced, p, 0.5f);
@@ -175,13 +175,18 @@ TEST(DirectLight, DefaultSceneCeilingBesideTheWallLampMatchesLambertsFormula) {
     ASSERT_TRUE(hit.found());
     const SurfacePoint sp = make_surface_point(traced->scene, ray, hit);
     ASSERT_NEAR(sp.position.y, 548.8f, 1e-3f);
-    DirectLightOptions options;
-    options.blinn_k = 1.0f;
-    const Estimate e = estimate_with_error(*traced, sp, options, 40000, 5);
-    const double irradiance = test::lambert_irradiance(lamp, glm::dvec3(sp.position), glm::dvec3(0, -1, 0), 1.0);
-    const glm::dvec3 expected = kd / static_cast<double>(kPi) * lamp_le * irradiance;
-    expect_within_error(e, Vec3(expected), "ceiling x = " + std::to_string(x));
-    EXPECT_GT(e.mean.b, 0.1f);
+    for (const LightStrategy strategy : {LightStrategy::kArea, LightStrategy::kImportance}) {
+      DirectLightOptions options;
+      options.strategy = strategy;
+      options.blinn_k = 1.0f;
+      const Estimate e = estimate_with_error(*traced, sp, options, 40000, 5);
+      const double irradiance = test::lambert_irradiance(lamp, glm::dvec3(sp.position), glm::dvec3(0, -1, 0), 1.0);
+      const glm::dvec3 expected = kd / static_cast<double>(kPi) * lamp_le * irradiance;
+      expect_within_error(e, Vec3(expected),
+                          "ceiling x = " + std::to_string(x) + ", lights " +
+                              std::string(kLightStrategyNames[static_cast<size_t>(strategy)]));
+      EXPECT_GT(e.mean.b, 0.1f);
+    }
   }
 }
 
@@ -242,7 +247,8 @@ TEST(DirectLight, SeveralPointsAtOnceGiveWhatOnePointAtATimeGives) {
       make_camera({Vec3(278, 273, -800), Vec3(278, 273, 0), Vec3(0, 1, 0), 40.0f}, 64, 64), traced->diagonal);
   for (const SamplerKind kind : {SamplerKind::kSobol, SamplerKind::kIndependent})
     for (const LightStrategy strategy :
-         {LightStrategy::kArea, LightStrategy::kUniform, LightStrategy::kPower, LightStrategy::kAll})
+         {LightStrategy::kArea, LightStrategy::kUniform, LightStrategy::kPower, LightStrategy::kAll,
+          LightStrategy::kImportance})
       for (const int rays : {1, 2, 3, 5, 16, 17})
         for (const bool with_head_light : {false, true})
           for (const bool specular_only : {false, true}) {

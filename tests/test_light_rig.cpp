@@ -157,7 +157,8 @@ TEST(LightRig, ClosedRoomIsLitFromInsideAsDesigned) {
   const std::optional<SurfacePoint> sp = test::surface_below(*traced, below, 1.0f);
   ASSERT_TRUE(sp);
   for (const LightStrategy strategy :
-       {LightStrategy::kAll, LightStrategy::kUniform, LightStrategy::kArea, LightStrategy::kPower}) {
+       {LightStrategy::kAll, LightStrategy::kUniform, LightStrategy::kArea, LightStrategy::kPower,
+        LightStrategy::kImportance}) {
     DirectLightOptions options;
     options.strategy = strategy;
     options.rays = 4096;

@@ -65,7 +65,8 @@ TEST(Render, EveryLightStrategyHasTheSameExpectedImage) {
   settings.l1_rays = 16;
   std::vector<double> means;
   for (const LightStrategy s :
-       {LightStrategy::kAll, LightStrategy::kUniform, LightStrategy::kArea, LightStrategy::kPower}) {
+       {LightStrategy::kAll, LightStrategy::kUniform, LightStrategy::kArea, LightStrategy::kPower,
+        LightStrategy::kImportance}) {
     settings.lights = s;
     const Film film = render_default(*traced, settings, s == LightStrategy::kAll ? 8 : 64, 2);
     const Image l1 = pass_average(film, Pass::kL1);

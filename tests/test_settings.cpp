@@ -183,7 +183,8 @@ TEST(SettingTable, ErrorsNameTheSetting) {
   EXPECT_EQ(command_line_error("l1-rays", "-3"), "--l1-rays: '-3' is outside [0, 4096]");
   EXPECT_EQ(command_line_error("seed", "-1"), "--seed: '-1' is not a non-negative integer");
   EXPECT_EQ(command_line_error("blinn-k", "nan"), "--blinn-k: 'nan' is not a finite number");
-  EXPECT_EQ(command_line_error("lights", "sideways"), "--lights: 'sideways' is not one of all|uniform|area|power");
+  EXPECT_EQ(command_line_error("lights", "sideways"),
+            "--lights: 'sideways' is not one of all|uniform|area|power|importance");
   EXPECT_EQ(command_line_error("smooth-normals", "maybe"), "--smooth-normals: 'maybe' is not on|off");
   try {
     view_from_json("{\"lueur_view\": 1, \"l1_ray\": 3}");

@@ -1,8 +1,8 @@
-// Area-light sampling for L1. Each sample: choose an emitter (per strategy), a uniform point on it, and weight
-// Le f cos_p cos_l / d^2 by 1 / (pmf / area) if the shadow ray reaches it. Where the surface point is close to the
-// emitter's plane for the emitter's size (an emitting face meeting a lit one at an edge), that weight has no bound,
-// and the point on the emitter is placed by solid angle instead (core/spherical_triangle.h): weight Le f cos_p
-// solid_angle / pmf.
+// Area-light sampling for L1. Each sample: choose an emitter (per strategy; kImportance weighs them at the point
+// first), a uniform point on it, and weight Le f cos_p cos_l / d^2 by 1 / (pmf / area) if the shadow ray reaches
+// it. Where the surface point is close to the emitter's plane for the emitter's size (an emitting face meeting a lit
+// one at an edge), that weight has no bound, and the point on the emitter is placed by solid angle instead
+// (core/spherical_triangle.h): weight Le f cos_p solid_angle / pmf.
 #include "render/direct_light.h"
 
 #include <algorithm>
@@ -212,10 +212,20 @@ struct L1Sums {
   }
 };
 
-/// The emitters chosen by lanes [0, count) of `placed`, whose light-choice numbers are `choice_u`, gathered.
-void choose_lights(const LightTable& table, LightStrategy strategy, const float* choice_u, size_t count,
-                   PlacedLightSamples& placed) {
-  for (size_t k = 0; k < count; ++k) {
+/// The emitters chosen for surface point `sp` by lanes [first, first + count) of `placed`, whose light-choice numbers
+/// are `choice_u[first, first + count)`, gathered.
+void choose_lights(const LightTable& table, LightStrategy strategy, const SurfacePoint& sp, const float* choice_u,
+                   size_t first, size_t count, PlacedLightSamples& placed) {
+  if (strategy == LightStrategy::kImportance) {
+    LightWeights weights;
+    weigh_light_clusters(table.clusters, sp.position, sp.shading_normal, weights);
+    for (size_t k = first; k < first + count; ++k) {
+      const LightChoice choice = choose_weighted_light(table.clusters, weights, choice_u[k]);
+      placed.gather(k, table.records[choice.index], choice);
+    }
+    return;
+  }
+  for (size_t k = first; k < first + count; ++k) {
     const LightChoice choice = choose_light(table, strategy, choice_u[k]);
     placed.gather(k, table.records[choice.index], choice);
   }
@@ -278,7 +288,7 @@ Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, co
       std::array<float, kSampleBatch> choice_u;
       sampler.draw_1d_2d(first_sample + static_cast<uint64_t>(batch), static_cast<int>(count), choice_u.data(),
                          placed.u1.data(), placed.u2.data());
-      choose_lights(table, options.strategy, choice_u.data(), count, placed);
+      choose_lights(table, options.strategy, sp, choice_u.data(), 0, count, placed);
       placed.place<false>(count, sp, shadow_origin);
       placed.place_close_ones<false>(count, sp, shadow_origin, table.records);
       for (size_t k = 0; k < count; ++k) {
@@ -340,7 +350,8 @@ void estimate_direct_light_at_points(const TracedScene& traced, const SurfacePoi
     const size_t lanes = in_batch * rays;
     sampler.draw_1d_2d_runs(batch_first_samples.data(), static_cast<int>(in_batch), options.rays, choice_u.data(),
                             placed.u1.data(), placed.u2.data());
-    choose_lights(table, options.strategy, choice_u.data(), lanes, placed);
+    for (size_t j = 0; j < in_batch; ++j)
+      choose_lights(table, options.strategy, *points[batch_points[j]], choice_u.data(), j * rays, rays, placed);
     placed.place<true>(lanes, *points[0], Vec3(0.0f));
     placed.place_close_ones<true>(lanes, *points[0], Vec3(0.0f), table.records);
     for (size_t j = 0; j < in_batch; ++j) {

@@ -79,6 +79,7 @@ LightTable build_light_table(const Scene& scene) {
   if (!(power_sum > 0.0)) table.by_power.cdf = table.by_area.cdf;
   index_light_cdf(table.by_area);
   index_light_cdf(table.by_power);
+  table.clusters = build_light_clusters(table.records);
   return table;
 }
 
@@ -96,6 +97,7 @@ LightChoice choose_light(const LightTable& table, LightStrategy strategy, float 
       choice.pmf = table.by_area.pmf[choice.index];
       break;
     case LightStrategy::kPower:
+    case LightStrategy::kImportance:
       choice.index = invert_cdf(table.by_power, u);
       choice.pmf = table.by_power.pmf[choice.index];
       break;
@@ -108,6 +110,7 @@ float light_pmf(const LightTable& table, LightStrategy strategy, uint32_t index)
     case LightStrategy::kArea:
       return table.by_area.pmf[index];
     case LightStrategy::kPower:
+    case LightStrategy::kImportance:
       return table.by_power.pmf[index];
     case LightStrategy::kUniform:
     case LightStrategy::kAll:

@@ -4,19 +4,12 @@
 
 #include <vector>
 
+#include "render/emitter.h"
+#include "render/light_clusters.h"
 #include "render/settings.h"
 #include "scene/scene.h"
 
 namespace lueur {
-
-/// What a shadow ray needs of one emitter, in one place: its corners, unit normal, emission and area, so that
-/// sampling a point on it reads one record instead of the scene's triangle, vertex and material arrays.
-struct EmitterRecord {
-  Vec3 p0{0.0f}, p1{0.0f}, p2{0.0f};
-  Vec3 normal{0.0f};  ///< unit geometric normal: the side it shines on
-  Vec3 ke{0.0f};
-  float area = 0.0f;
-};
 
 /// A discrete CDF with its inverse made O(1): `guide[j]` is the answer for the smallest u of bucket j (u in
 /// [j, j + 1) / guide.size(), a power of two so that u x size is exact), and a short walk finds the exact one.
@@ -31,6 +24,7 @@ struct LightTable {
   std::vector<EmitterRecord> records;  ///< per table entry (its area among them)
   LightCdf by_area;                    ///< running sum of areas
   LightCdf by_power;                   ///< running sum of area x luminance(Ke)
+  LightClusters clusters;              ///< for the choice per shaded point (kImportance)
   bool empty() const { return triangles.empty(); }
   size_t size() const { return triangles.size(); }
 };
@@ -40,13 +34,10 @@ LightTable build_light_table(const Scene& scene);
 /// Fills `pmf` and `guide` from `cdf` (non-decreasing, positive total).
 void index_light_cdf(LightCdf& table);
 
-struct LightChoice {
-  uint32_t index = 0;  ///< position in the table
-  float pmf = 0.0f;    ///< probability of choosing it
-};
-
 /// One emitter for u in [0, 1): uniform, area or power (the cumulative table's inverse: the first entry whose
 /// running sum exceeds u x total). `LightStrategy::kAll` does not choose; the caller loops over every emitter.
+/// kImportance chooses per shaded point (choose_weighted_light); with no point to weigh the emitters at, as here,
+/// it chooses by power.
 LightChoice choose_light(const LightTable& table, LightStrategy strategy, float u);
 
 /// Probability that `choose_light` returns `index`.

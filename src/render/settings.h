@@ -21,8 +21,10 @@ inline constexpr int kPassCount = 4;
 inline constexpr std::array<std::string_view, kPassCount> kPassNames = {"le", "l1", "l2", "ao"};
 
 /// How L1 picks the emitter a shadow ray goes to.
-enum class LightStrategy : int { kAll = 0, kUniform = 1, kArea = 2, kPower = 3 };
-inline constexpr std::array<std::string_view, 4> kLightStrategyNames = {"all", "uniform", "area", "power"};
+/// `importance`: by a bound on what each emitter can send to the shaded point (render/light_clusters.h).
+enum class LightStrategy : int { kAll = 0, kUniform = 1, kArea = 2, kPower = 3, kImportance = 4 };
+inline constexpr std::array<std::string_view, 5> kLightStrategyNames = {"all", "uniform", "area", "power",
+                                                                        "importance"};
 
 /// Where L2 takes L1(q) from when a bounce ray hits q: nowhere (recompute), the screen (the report's reuse: this
 /// frame's pixels or their running average), the world-space L1 store (the report's improvement II-B), or both: the

@@ -28,7 +28,10 @@ std::vector<Row> make_rows() {
   table.push_back(passes_row());
   table.push_back(weights_row());
   table.push_back(enum_row<LightStrategy>(
-      "lights", "how L1 picks the emitter of each shadow ray", E::kRestart, kLightStrategyNames,
+      "lights",
+      "how L1 picks the emitter of each shadow ray: a point on every one (all), one uniformly, by area (the "
+      "report's), by area x brightness (power), or by what each can send to the shaded point (importance)",
+      E::kRestart, kLightStrategyNames,
       [](auto& s) -> auto& { return s.render.lights; }));
   table.push_back(integer_row(
       "le-rays",

@@ -1,0 +1,70 @@
+// The `importance` light choice: the emitters grouped into a few clusters, each bounded (a sphere around it, a cone
+// around its normals, its power), so that L1 weighs every cluster at the point it shades by a bound on what the
+// cluster can send there (power x the best cosine at the surface x the best cosine at the emitter / distance^2),
+// chooses one by that weight, then one of its emitters by power. The angular bounds are those of pbrt-v4's light BVH
+// (LightBounds::Importance). Besides, a cluster wholly below the point's horizon (its box) or with the point behind
+// every one of its emitters' planes weighs nothing, however close: no shadow ray is spent on a ceiling light from the
+// ceiling it hangs under, or on a wall lamp from the wall behind it. The weight is positive wherever an emitter of
+// the cluster can light the point, so the estimate stays unbiased, but for points within a few ulps of an emitter's
+// plane and clusters whose best cosine at the surface is below 1e-5 (an emitter in the surface's own plane). The
+// clusters are a cut of at most kMaxLightClusters nodes of a tree over the emitters, so that the weighing costs a
+// fixed few operations per point however many emitters the scene has.
+// Depends on render/emitter.h only.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "render/emitter.h"
+
+namespace lueur {
+
+inline constexpr size_t kMaxLightClusters = 16;
+
+struct LightClusters {
+  /// Per cluster, in fixed arrays so that weighing them all at a point is one loop of known length without branches
+  /// (the compiler weighs several at once); entries past `count` weigh nothing (power 0).
+  using PerCluster = std::array<float, kMaxLightClusters>;
+  size_t count = 0;
+  PerCluster cx{}, cy{}, cz{};  ///< centre of the bounding sphere of its triangles
+  PerCluster radius{};          ///< that sphere's radius (positive)
+  PerCluster ax{}, ay{}, az{};  ///< unit axis of the cone holding its emitters' normals
+  PerCluster cos_spread{};      ///< cosine of that cone's half-angle; -1: they face every way
+  PerCluster ex{}, ey{}, ez{};  ///< half extents of the box around its triangles (centred on the sphere's centre)
+  PerCluster lowest{};          ///< the least of axis . corner over its triangles' corners
+  PerCluster tilt{};            ///< the largest |normal - axis| over its emitters (0: all face along the axis)
+  PerCluster power{};           ///< sum of its emitters' power
+  std::vector<uint32_t> first;       ///< cluster c holds members[first[c], first[c + 1])
+  std::vector<uint32_t> members;     ///< light-table indices, grouped by cluster
+  std::vector<double> member_cdf;    ///< per member: running power within its cluster
+  std::vector<uint32_t> cluster_of;  ///< per light-table index: its cluster
+  std::vector<float> share;          ///< per light-table index: its power / its cluster's power
+  size_t size() const { return count; }
+};
+
+/// Clusters over the light table's emitters (`records`, table order): top-down, each time splitting the cluster of
+/// largest power x radius at the middle of its longest extent (of the triangles' centroids), until there are
+/// kMaxLightClusters or every cluster holds one emitter. Emitters of zero power (none when any has power) are
+/// weighed by area instead.
+LightClusters build_light_clusters(const std::vector<EmitterRecord>& records);
+
+/// Every cluster's weight at one shaded point, as a running sum.
+struct LightWeights {
+  std::array<float, kMaxLightClusters> weight{};
+  std::array<float, kMaxLightClusters> cdf{};
+  float total = 0.0f;  ///< 0: no emitter can light the point
+};
+
+/// Weighs the clusters at `position`, whose light must arrive on the side of the unit `normal`.
+void weigh_light_clusters(const LightClusters& clusters, const Vec3& position, const Vec3& normal,
+                          LightWeights& weights);
+
+/// One emitter for u in [0, 1): a cluster by weight, then, with u rescaled inside the cluster's share (which keeps
+/// the numbers' stratification), one of its emitters by power. pmf 0 when no cluster weighs anything.
+LightChoice choose_weighted_light(const LightClusters& clusters, const LightWeights& weights, float u);
+
+/// Probability that `choose_weighted_light` returns light-table index `index` with these weights.
+float weighted_light_pmf(const LightClusters& clusters, const LightWeights& weights, uint32_t index);
+
+}  // namespace lueur
