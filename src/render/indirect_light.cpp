@@ -231,7 +231,10 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
   if (!reflects_light(material)) return result;
 
   DirectLightOptions recompute;
-  recompute.strategy = settings.lights;
+  // `importance` weighs every emitter cluster at the point it shades: worth it for a pixel's 16 shadow rays, not for
+  // the 2 of a recomputed L1(q), whose error L2's bounce directions outweigh. Measured on the default scene (256x256,
+  // 24 frames): with power here the frame is 8% faster, and the image's error at equal time 2% lower.
+  recompute.strategy = settings.lights == LightStrategy::kImportance ? LightStrategy::kPower : settings.lights;
   recompute.rays = settings.recompute_rays();
   recompute.blinn_k = settings.blinn_k;
   EmitterRecord head_light;

@@ -169,12 +169,15 @@ LightClusters build_light_clusters(const std::vector<EmitterRecord>& records) {
   return clusters;
 }
 
-void weigh_light_clusters(const LightClusters& c, const Vec3& position, const Vec3& normal, LightWeights& weights) {
+/// Weighs clusters [0, kLanes) (kLanes a multiple of four at least the count: a fixed trip count, which the compiler
+/// weighs four at a time).
+template <size_t kLanes>
+void weigh_lanes(const LightClusters& c, const Vec3& position, const Vec3& normal, LightWeights& weights) {
   // Copies, so that the compiler need not fear that writing the weights changes them.
   const float px = position.x, py = position.y, pz = position.z, nx = normal.x, ny = normal.y, nz = normal.z;
   const float ax_nx = std::fabs(nx), ax_ny = std::fabs(ny), ax_nz = std::fabs(nz);
-  LightClusters::PerCluster out;
-  for (size_t k = 0; k < kMaxLightClusters; ++k) {
+  LightClusters::PerCluster out{};
+  for (size_t k = 0; k < kLanes; ++k) {
     const float dx = c.cx[k] - px, dy = c.cy[k] - py, dz = c.cz[k] - pz;
     const float d2 = dx * dx + dy * dy + dz * dz;
     const float r2 = c.radius[k] * c.radius[k];
@@ -205,8 +208,16 @@ void weigh_light_clusters(const LightClusters& c, const Vec3& position, const Ve
   }
   weights.weight = out;
   float running = 0.0f;
-  for (size_t k = 0; k < kMaxLightClusters; ++k) weights.cdf[k] = running += weights.weight[k];
+  for (size_t k = 0; k < kLanes; ++k) weights.cdf[k] = running += weights.weight[k];
   weights.total = std::isfinite(running) ? running : 0.0f;
+}
+
+void weigh_light_clusters(const LightClusters& c, const Vec3& position, const Vec3& normal, LightWeights& weights) {
+  // A scene with one or two emitters weighs four lanes, not sixteen.
+  static_assert(kMaxLightClusters == 16);
+  if (c.count <= 4) return weigh_lanes<4>(c, position, normal, weights);
+  if (c.count <= 8) return weigh_lanes<8>(c, position, normal, weights);
+  weigh_lanes<16>(c, position, normal, weights);
 }
 
 LightChoice choose_weighted_light(const LightClusters& c, const LightWeights& weights, float u) {

@@ -75,7 +75,7 @@ struct RenderSettings {
   int width = 512;
   int height = 512;
   std::array<bool, kPassCount> enabled = {true, true, true, false};
-  LightStrategy lights = LightStrategy::kArea;
+  LightStrategy lights = LightStrategy::kImportance;
   int le_rays = 4;       ///< camera rays per pixel per frame that estimate Le (1: the ray that carries L1, L2, AO)
   int l1_rays = 16;      ///< shadow rays per pixel per frame
   float blinn_k = 0.7f;  ///< the report's Lambert share for materials without Ks
