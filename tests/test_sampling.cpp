@@ -154,6 +154,78 @@ TEST(Sampling, SphericalTriangleDirectionsAreUniformInSolidAngle) {
   expect_uniform_in_solid_angle(Vec3(0.4f, -0.02f, 0.01f), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0));
 }
 
+// The numbers warped toward the cosine come as often as the bilinear density they return says: counts in an 8 x 8
+// grid against the density's integral over each cell (a bilinear function's mean over a rectangle is its value at
+// the centre), and the returned density against the bilinear through the corner cosines.
+TEST(Sampling, CosineWarpedNumbersFollowTheirBilinearDensity) {
+  const SphericalTriangle t = make_spherical_triangle(Vec3(0.1f, 0.2f, 0.0f), Vec3(-2, -1, 1), Vec3(3, 0, 0.5f),
+                                                      Vec3(0, 3, 2));
+  ASSERT_GT(t.solid_angle, 0.0);
+  const glm::dvec3 normal = glm::normalize(glm::dvec3(0.3, -0.2, 1.0));
+  const double at_b = std::max(0.01, glm::dot(normal, t.b)), at_a = std::max(0.01, glm::dot(normal, t.a)),
+               at_c = std::max(0.01, glm::dot(normal, t.c));
+  const double mean = (2.0 * at_b + at_a + at_c) / 4.0;
+  const auto bilinear = [&](double x, double y) {
+    return ((1 - x) * (1 - y) * at_b + x * (1 - y) * at_b + (1 - x) * y * at_a + x * y * at_c) / mean;
+  };
+  constexpr int kGrid = 8, kSamples = 400000;
+  std::vector<int> counts(kGrid * kGrid, 0);
+  Pcg32 rng(8, 1);
+  for (int n = 0; n < kSamples; ++n) {
+    double u1 = rng.next_float(), u2 = rng.next_float();
+    const double density = warp_toward_cosine(t, normal, u1, u2);
+    ASSERT_GE(u1, 0.0);
+    ASSERT_LT(u1, 1.0);
+    ASSERT_GE(u2, 0.0);
+    ASSERT_LT(u2, 1.0);
+    ASSERT_NEAR(density, bilinear(u1, u2), 1e-9);
+    ++counts[static_cast<size_t>(static_cast<int>(u2 * kGrid) * kGrid + static_cast<int>(u1 * kGrid))];
+  }
+  double chi2 = 0.0;
+  for (int y = 0; y < kGrid; ++y)
+    for (int x = 0; x < kGrid; ++x) {
+      const double expected = kSamples * bilinear((x + 0.5) / kGrid, (y + 0.5) / kGrid) / (kGrid * kGrid);
+      const double count = counts[static_cast<size_t>(y * kGrid + x)];
+      chi2 += (count - expected) * (count - expected) / expected;
+    }
+  EXPECT_FALSE(test::chi_square_rejects(chi2, kGrid * kGrid - 1)) << chi2;
+}
+
+// What the warp is for: the projected solid angle of a wide triangle rising from the horizon (a wall of a sky seen
+// from the ground: the cosine grows from near 0 at its foot to 0.95 at its top), by Lambert's formula, estimated from
+// directions uniform in solid angle (weight cos x solid angle) and from warped ones (divided by the density too).
+// Both agree with the formula; the warped one with a fraction of the variance. (Where the normal points into a wide
+// triangle whose corners all lie low, the cosine peaks inside it and a bilinear through the corners follows it
+// less well; under the bunny's sky warping everywhere still measured 7-9% less error than sparing such triangles.)
+TEST(Sampling, CosineWarpEstimatesTheProjectedSolidAngleWithLessVariance) {
+  const Vec3 from(0.0f), p0(2.0f, -3.0f, 0.1f), p1(1.0f, 0.0f, 3.0f), p2(2.0f, 3.0f, 0.1f);
+  const glm::dvec3 normal(0.0, 0.0, 1.0);
+  const SphericalTriangle t = make_spherical_triangle(from, p0, p1, p2);
+  ASSERT_GT(t.solid_angle, 1.0);  // a wide one: more than a sixth of the hemisphere
+  const double exact = test::lambert_irradiance({glm::dvec3(p0), glm::dvec3(p1), glm::dvec3(p2)}, glm::dvec3(from),
+                                                normal, 1.0);
+  constexpr int kSamples = 200000;
+  double sum[2] = {0, 0}, sum2[2] = {0, 0};
+  Pcg32 rng(4, 4);
+  for (int n = 0; n < kSamples; ++n) {
+    const double u1 = rng.next_float(), u2 = rng.next_float();
+    const double uniform = std::max(0.0, glm::dot(normal, sample_spherical_triangle(t, u1, u2))) * t.solid_angle;
+    double w1 = u1, w2 = u2;
+    const double density = warp_toward_cosine(t, normal, w1, w2);
+    const double warped =
+        std::max(0.0, glm::dot(normal, sample_spherical_triangle(t, w1, w2))) * t.solid_angle / density;
+    sum[0] += uniform, sum2[0] += uniform * uniform;
+    sum[1] += warped, sum2[1] += warped * warped;
+  }
+  double variance[2];
+  for (int k = 0; k < 2; ++k) {
+    const double m = sum[k] / kSamples;
+    variance[k] = sum2[k] / kSamples - m * m;
+    EXPECT_NEAR(m, exact, 4.0 * std::sqrt(variance[k] / kSamples) + 1e-9) << (k ? "warped" : "uniform");
+  }
+  EXPECT_LT(variance[1], 0.25 * variance[0]) << variance[0] << " against " << variance[1];
+}
+
 // The branch-free (cos, sin) of 2 pi u against libm in double: everywhere in [0, 1], at every quarter turn and on
 // both sides of the points where the quadrant changes.
 TEST(Sampling, CosSinOfATurnMatchesLibm) {

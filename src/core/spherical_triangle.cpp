@@ -27,7 +27,25 @@ bool corner_angle(const glm::dvec3& at, const glm::dvec3& to1, const glm::dvec3&
   return true;
 }
 
+/// x in [0, 1) with density proportional to (1 - x) a + x b (a, b >= 0, not both 0), for u in [0, 1).
+double sample_linear(double u, double a, double b) {
+  if (u == 0.0 && a == 0.0) return 0.0;
+  const double x = u * (a + b) / (a + std::sqrt((1.0 - u) * a * a + u * b * b));
+  return std::min(x, std::nextafter(1.0, 0.0));
+}
+
 }  // namespace
+
+double warp_toward_cosine(const SphericalTriangle& t, const glm::dvec3& normal, double& u1, double& u2) {
+  const double at_b = std::max(0.01, glm::dot(normal, t.b)), at_a = std::max(0.01, glm::dot(normal, t.a)),
+               at_c = std::max(0.01, glm::dot(normal, t.c));
+  // Corners (u1, u2): (0, 0) and (1, 0) b, (0, 1) a, (1, 1) c. u2 from its marginal, then u1 given u2.
+  u2 = sample_linear(u2, 2.0 * at_b, at_a + at_c);
+  const double left = (1.0 - u2) * at_b + u2 * at_a, right = (1.0 - u2) * at_b + u2 * at_c;
+  u1 = sample_linear(u1, left, right);
+  const double value = (1.0 - u1) * left + u1 * right;
+  return 4.0 * value / (2.0 * at_b + at_a + at_c);
+}
 
 SphericalTriangle make_spherical_triangle(const Vec3& from, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
   SphericalTriangle t;

@@ -24,4 +24,11 @@ SphericalTriangle make_spherical_triangle(const Vec3& from, const Vec3& p0, cons
 /// stratification of the numbers. Only for a triangle with a positive solid angle.
 glm::dvec3 sample_spherical_triangle(const SphericalTriangle& t, double u1, double u2);
 
+/// The numbers (u1, u2) for sample_spherical_triangle warped so that directions come about in proportion to the
+/// cosine with `normal` (pbrt-v4's warp product sampling): a bilinear density over [0, 1]^2 whose corners hold the
+/// cosines toward the corners the warp maps them to ((0, 0) and (1, 0) to b, (0, 1) to a, (1, 1) to c), each at
+/// least 0.01 so that no direction is left out. Returns the density of the warped numbers, by which the estimate
+/// divides; 1 with no warp.
+double warp_toward_cosine(const SphericalTriangle& t, const glm::dvec3& normal, double& u1, double& u2);
+
 }  // namespace lueur
