@@ -242,9 +242,10 @@ struct L1Sums {
 /// are `choice_u[first, first + count)`, gathered.
 void choose_lights(const LightTable& table, LightStrategy strategy, const SurfacePoint& sp, const float* choice_u,
                    size_t first, size_t count, PlacedLightSamples& placed) {
-  if (strategy == LightStrategy::kImportance) {
-    LightWeights weights;
+  LightWeights weights;
+  if (strategy == LightStrategy::kImportance)
     weigh_light_clusters(table.clusters, sp.position, sp.shading_normal, weights);
+  if (strategy == LightStrategy::kImportance && !weights.overflowed) {
     for (size_t k = first; k < first + count; ++k) {
       const LightChoice choice = choose_weighted_light(table.clusters, weights, choice_u[k]);
       placed.gather(k, table.records[choice.index], choice);

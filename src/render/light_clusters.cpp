@@ -31,7 +31,8 @@ struct Range {
 std::vector<double> emitter_weights(const std::vector<EmitterRecord>& records) {
   std::vector<double> weights(records.size());
   double total = 0.0;
-  for (size_t i = 0; i < records.size(); ++i) total += weights[i] = emitter_power(records[i]);
+  for (size_t i = 0; i < records.size(); ++i)
+    total += weights[i] = static_cast<double>(records[i].area) * luminance(records[i].ke);
   if (!(total > 0.0))
     for (size_t i = 0; i < records.size(); ++i) weights[i] = records[i].area;
   return weights;
@@ -73,7 +74,7 @@ size_t split(const std::vector<EmitterRecord>& records, std::vector<uint32_t>& o
 
 /// Appends the bounds of the cluster holding `order[r.begin, r.end)`.
 void add_cluster(LightClusters& c, const std::vector<EmitterRecord>& records, const std::vector<double>& weights,
-                 const std::vector<uint32_t>& order, const Range& r) {
+                 const std::vector<uint32_t>& order, const Range& r, double power_scale) {
   Box box;
   glm::dvec3 normal_sum(0.0);
   double area_sum = 0.0;
@@ -113,7 +114,7 @@ void add_cluster(LightClusters& c, const std::vector<EmitterRecord>& records, co
   }
   c.lowest[cluster] = lowest;
   c.tilt[cluster] = static_cast<float>(tilt) + 1e-6f;  // the normals' own rounding
-  c.power[cluster] = static_cast<float>(r.power);
+  c.power[cluster] = static_cast<float>(r.power * power_scale);
   c.first.push_back(static_cast<uint32_t>(c.members.size()));
   double running = 0.0;
   for (size_t k = r.begin; k < r.end; ++k) {
@@ -164,7 +165,10 @@ LightClusters build_light_clusters(const std::vector<EmitterRecord>& records) {
   }
   clusters.cluster_of.resize(records.size());
   clusters.share.resize(records.size());
-  for (const Range& r : ranges) add_cluster(clusters, records, weights, order, r);
+  // Powers relative to the brightest cluster's: a scene of absurd Ke stays within a float.
+  double brightest = 0.0;
+  for (const Range& r : ranges) brightest = std::max(brightest, r.power);
+  for (const Range& r : ranges) add_cluster(clusters, records, weights, order, r, 1.0 / brightest);
   clusters.first.push_back(static_cast<uint32_t>(clusters.members.size()));
   return clusters;
 }
@@ -209,7 +213,8 @@ void weigh_lanes(const LightClusters& c, const Vec3& position, const Vec3& norma
   weights.weight = out;
   float running = 0.0f;
   for (size_t k = 0; k < kLanes; ++k) weights.cdf[k] = running += weights.weight[k];
-  weights.total = std::isfinite(running) ? running : 0.0f;
+  weights.overflowed = !std::isfinite(running);
+  weights.total = weights.overflowed ? 0.0f : running;
 }
 
 void weigh_light_clusters(const LightClusters& c, const Vec3& position, const Vec3& normal, LightWeights& weights) {

@@ -34,7 +34,7 @@ struct LightClusters {
   PerCluster ex{}, ey{}, ez{};  ///< half extents of the box around its triangles (centred on the sphere's centre)
   PerCluster lowest{};          ///< the least of axis . corner over its triangles' corners
   PerCluster tilt{};            ///< the largest |normal - axis| over its emitters (0: all face along the axis)
-  PerCluster power{};           ///< sum of its emitters' power
+  PerCluster power{};           ///< sum of its emitters' power, relative to the brightest cluster's
   std::vector<uint32_t> first;       ///< cluster c holds members[first[c], first[c + 1])
   std::vector<uint32_t> members;     ///< light-table indices, grouped by cluster
   std::vector<double> member_cdf;    ///< per member: running power within its cluster
@@ -53,7 +53,10 @@ LightClusters build_light_clusters(const std::vector<EmitterRecord>& records);
 struct LightWeights {
   std::array<float, kMaxLightClusters> weight{};
   std::array<float, kMaxLightClusters> cdf{};
-  float total = 0.0f;  ///< 0: no emitter can light the point
+  float total = 0.0f;  ///< 0: no emitter can light the point (or the weights overflowed)
+  /// The weights passed a float's range (a point absurdly close to an absurdly small emitter): the caller chooses by
+  /// power instead.
+  bool overflowed = false;
 };
 
 /// Weighs the clusters at `position`, whose light must arrive on the side of the unit `normal`.
