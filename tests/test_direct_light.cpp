@@ -246,9 +246,8 @@ TEST(DirectLight, SeveralPointsAtOnceGiveWhatOnePointAtATimeGives) {
   const EmitterRecord head_light = make_camera_light(
       make_camera({Vec3(278, 273, -800), Vec3(278, 273, 0), Vec3(0, 1, 0), 40.0f}, 64, 64), traced->diagonal);
   for (const SamplerKind kind : {SamplerKind::kSobol, SamplerKind::kIndependent})
-    for (const LightStrategy strategy :
-         {LightStrategy::kArea, LightStrategy::kUniform, LightStrategy::kPower, LightStrategy::kAll,
-          LightStrategy::kImportance})
+    for (const LightStrategy strategy : {LightStrategy::kArea, LightStrategy::kUniform, LightStrategy::kPower,
+                                         LightStrategy::kAll, LightStrategy::kImportance})
       for (const int rays : {1, 2, 3, 5, 16, 17})
         for (const bool with_head_light : {false, true})
           for (const bool specular_only : {false, true}) {

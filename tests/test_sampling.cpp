@@ -158,8 +158,8 @@ TEST(Sampling, SphericalTriangleDirectionsAreUniformInSolidAngle) {
 // grid against the density's integral over each cell (a bilinear function's mean over a rectangle is its value at
 // the centre), and the returned density against the bilinear through the corner cosines.
 TEST(Sampling, CosineWarpedNumbersFollowTheirBilinearDensity) {
-  const SphericalTriangle t = make_spherical_triangle(Vec3(0.1f, 0.2f, 0.0f), Vec3(-2, -1, 1), Vec3(3, 0, 0.5f),
-                                                      Vec3(0, 3, 2));
+  const SphericalTriangle t =
+      make_spherical_triangle(Vec3(0.1f, 0.2f, 0.0f), Vec3(-2, -1, 1), Vec3(3, 0, 0.5f), Vec3(0, 3, 2));
   ASSERT_GT(t.solid_angle, 0.0);
   const glm::dvec3 normal = glm::normalize(glm::dvec3(0.3, -0.2, 1.0));
   const double at_b = std::max(0.01, glm::dot(normal, t.b)), at_a = std::max(0.01, glm::dot(normal, t.a)),
@@ -202,8 +202,8 @@ TEST(Sampling, CosineWarpEstimatesTheProjectedSolidAngleWithLessVariance) {
   const glm::dvec3 normal(0.0, 0.0, 1.0);
   const SphericalTriangle t = make_spherical_triangle(from, p0, p1, p2);
   ASSERT_GT(t.solid_angle, 1.0);  // a wide one: more than a sixth of the hemisphere
-  const double exact = test::lambert_irradiance({glm::dvec3(p0), glm::dvec3(p1), glm::dvec3(p2)}, glm::dvec3(from),
-                                                normal, 1.0);
+  const double exact =
+      test::lambert_irradiance({glm::dvec3(p0), glm::dvec3(p1), glm::dvec3(p2)}, glm::dvec3(from), normal, 1.0);
   constexpr int kSamples = 200000;
   double sum[2] = {0, 0}, sum2[2] = {0, 0};
   Pcg32 rng(4, 4);

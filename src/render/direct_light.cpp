@@ -35,8 +35,8 @@ inline float height_above(float nx, float ny, float nz, float px, float py, floa
 }
 
 /// The squared distance from (px, py, pz) to the centroid of the triangle with corners p0, p1, p2.
-inline float centroid_distance2(float p0x, float p0y, float p0z, float p1x, float p1y, float p1z, float p2x,
-                                float p2y, float p2z, float px, float py, float pz) {
+inline float centroid_distance2(float p0x, float p0y, float p0z, float p1x, float p1y, float p1z, float p2x, float p2y,
+                                float p2z, float px, float py, float pz) {
   const float cx = (p0x + p1x + p2x) * (1.0f / 3.0f) - px, cy = (p0y + p1y + p2y) * (1.0f / 3.0f) - py,
               cz = (p0z + p1z + p2z) * (1.0f / 3.0f) - pz;
   return cx * cx + cy * cy + cz * cz;
@@ -96,9 +96,8 @@ Vec3 sample_emitter(const TracedScene& traced, const SurfacePoint& sp, const Emi
   const Vec3 origin = leaving_origin(sp);
   const float height =
       height_above(light.normal.x, light.normal.y, light.normal.z, origin.x, origin.y, origin.z, light.p0);
-  const float to_centroid2 = centroid_distance2(light.p0.x, light.p0.y, light.p0.z, light.p1.x, light.p1.y,
-                                                light.p1.z, light.p2.x, light.p2.y, light.p2.z, origin.x, origin.y,
-                                                origin.z);
+  const float to_centroid2 = centroid_distance2(light.p0.x, light.p0.y, light.p0.z, light.p1.x, light.p1.y, light.p1.z,
+                                                light.p2.x, light.p2.y, light.p2.z, origin.x, origin.y, origin.z);
   if (by_solid_angle(light.area, height, to_centroid2)) {
     Vec3 point(0.0f);
     const float scale = place_by_solid_angle(sp, origin, light, u1, u2, point, wi);

@@ -95,7 +95,8 @@ void add_cluster(LightClusters& c, const std::vector<EmitterRecord>& records, co
   if (length > 1e-6 * area_sum) {
     axis = Vec3(normal_sum / length);
     cos_spread = 1.0f;
-    for (size_t k = r.begin; k < r.end; ++k) cos_spread = std::min(cos_spread, glm::dot(axis, records[order[k]].normal));
+    for (size_t k = r.begin; k < r.end; ++k)
+      cos_spread = std::min(cos_spread, glm::dot(axis, records[order[k]].normal));
     // Rounding must not narrow the cone: widen it by a hair, and to every direction once it is a half-space or more.
     cos_spread = cos_spread > 1e-3f ? std::min(cos_spread, 1.0f) - 1e-5f : -1.0f;
   }

@@ -27,14 +27,14 @@ struct LightClusters {
   /// (the compiler weighs several at once); entries past `count` weigh nothing (power 0).
   using PerCluster = std::array<float, kMaxLightClusters>;
   size_t count = 0;
-  PerCluster cx{}, cy{}, cz{};  ///< centre of the bounding sphere of its triangles
-  PerCluster radius{};          ///< that sphere's radius (positive)
-  PerCluster ax{}, ay{}, az{};  ///< unit axis of the cone holding its emitters' normals
-  PerCluster cos_spread{};      ///< cosine of that cone's half-angle; -1: they face every way
-  PerCluster ex{}, ey{}, ez{};  ///< half extents of the box around its triangles (centred on the sphere's centre)
-  PerCluster lowest{};          ///< the least of axis . corner over its triangles' corners
-  PerCluster tilt{};            ///< the largest |normal - axis| over its emitters (0: all face along the axis)
-  PerCluster power{};           ///< sum of its emitters' power, relative to the brightest cluster's
+  PerCluster cx{}, cy{}, cz{};       ///< centre of the bounding sphere of its triangles
+  PerCluster radius{};               ///< that sphere's radius (positive)
+  PerCluster ax{}, ay{}, az{};       ///< unit axis of the cone holding its emitters' normals
+  PerCluster cos_spread{};           ///< cosine of that cone's half-angle; -1: they face every way
+  PerCluster ex{}, ey{}, ez{};       ///< half extents of the box around its triangles (centred on the sphere's centre)
+  PerCluster lowest{};               ///< the least of axis . corner over its triangles' corners
+  PerCluster tilt{};                 ///< the largest |normal - axis| over its emitters (0: all face along the axis)
+  PerCluster power{};                ///< sum of its emitters' power, relative to the brightest cluster's
   std::vector<uint32_t> first;       ///< cluster c holds members[first[c], first[c + 1])
   std::vector<uint32_t> members;     ///< light-table indices, grouped by cluster
   std::vector<double> member_cdf;    ///< per member: running power within its cluster

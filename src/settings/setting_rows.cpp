@@ -31,8 +31,7 @@ std::vector<Row> make_rows() {
       "lights",
       "how L1 picks the emitter of each shadow ray: a point on every one (all), one uniformly, by area (the "
       "report's), by area x brightness (power), or by what each can send to the shaded point (importance)",
-      E::kRestart, kLightStrategyNames,
-      [](auto& s) -> auto& { return s.render.lights; }));
+      E::kRestart, kLightStrategyNames, [](auto& s) -> auto& { return s.render.lights; }));
   table.push_back(integer_row(
       "le-rays",
       "camera rays per pixel per frame that see Le (emission), anti-aliasing the emitters' edges: with 1, the "
