@@ -241,15 +241,17 @@ struct L1Sums {
 /// are `choice_u[first, first + count)`, gathered.
 void choose_lights(const LightTable& table, LightStrategy strategy, const SurfacePoint& sp, const float* choice_u,
                    size_t first, size_t count, PlacedLightSamples& placed) {
-  LightWeights weights;
-  if (strategy == LightStrategy::kImportance)
+  if (strategy == LightStrategy::kImportance) {
+    LightWeights weights;
     weigh_light_clusters(table.clusters, sp.position, sp.shading_normal, weights);
-  if (strategy == LightStrategy::kImportance && !weights.overflowed) {
-    for (size_t k = first; k < first + count; ++k) {
-      const LightChoice choice = choose_weighted_light(table.clusters, weights, choice_u[k]);
-      placed.gather(k, table.records[choice.index], choice);
+    if (!weights.overflowed) {
+      for (size_t k = first; k < first + count; ++k) {
+        const LightChoice choice = choose_weighted_light(table.clusters, weights, choice_u[k]);
+        placed.gather(k, table.records[choice.index], choice);
+      }
+      return;
     }
-    return;
+    // Overflowed: choose_light below chooses by power for kImportance.
   }
   for (size_t k = first; k < first + count; ++k) {
     const LightChoice choice = choose_light(table, strategy, choice_u[k]);

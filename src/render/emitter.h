@@ -16,8 +16,9 @@ struct EmitterRecord {
   float area = 0.0f;
 };
 
-/// Emitter i's weight among the scene's when choosing by power: area x luminance(Ke).
-inline float emitter_power(const EmitterRecord& e) { return e.area * luminance(e.ke); }
+/// An emitter's weight among the scene's when choosing by power: area x luminance(Ke), in double so that absurd Ke
+/// stays finite.
+inline double emitter_power(const EmitterRecord& e) { return static_cast<double>(e.area) * luminance(e.ke); }
 
 struct LightChoice {
   uint32_t index = 0;  ///< position in the light table

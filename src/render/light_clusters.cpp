@@ -31,8 +31,7 @@ struct Range {
 std::vector<double> emitter_weights(const std::vector<EmitterRecord>& records) {
   std::vector<double> weights(records.size());
   double total = 0.0;
-  for (size_t i = 0; i < records.size(); ++i)
-    total += weights[i] = static_cast<double>(records[i].area) * luminance(records[i].ke);
+  for (size_t i = 0; i < records.size(); ++i) total += weights[i] = emitter_power(records[i]);
   if (!(total > 0.0))
     for (size_t i = 0; i < records.size(); ++i) weights[i] = records[i].area;
   return weights;

@@ -70,7 +70,7 @@ LightTable build_light_table(const Scene& scene) {
     record.area = areas[i];
     table.records.push_back(record);
     area_sum += areas[i];
-    power_sum += static_cast<double>(areas[i]) * luminance(record.ke);
+    power_sum += emitter_power(record);
     table.by_area.cdf.push_back(area_sum);
     table.by_power.cdf.push_back(power_sum);
   }
