@@ -156,6 +156,59 @@ TEST(LightClusters, ChoicesComeAsOftenAsTheirPmfSays) {
   }
 }
 
+// The choice inverts the two-level cdf exactly as a plain scan would: the first cluster whose running weight exceeds
+// u x total, then the first member whose running power exceeds its share of it. Checked against that scan (written
+// out here) at random numbers and at the edges (0, just below 1, and exactly on the clusters' boundaries), over
+// clusters of one to many members.
+TEST(LightClusters, ChoicesInvertTheirCdfAsAScanWould) {
+  // Random emitters, and 64 equal ones in a row (clusters of equal members, whose running powers 1, 2, 3... a number
+  // lands on exactly).
+  std::vector<EmitterRecord> equal;
+  for (int i = 0; i < 64; ++i) {
+    EmitterRecord e;
+    e.p0 = Vec3(0.1f * static_cast<float>(i), 1.0f, 0.0f);
+    e.p1 = e.p0 + Vec3(0.05f, 0.0f, 0.0f);
+    e.p2 = e.p0 + Vec3(0.0f, 0.0f, 0.05f);
+    e.area = 0.00125f;
+    e.normal = Vec3(0.0f, -1.0f, 0.0f);
+    e.ke = Vec3(4.0f);
+    equal.push_back(e);
+  }
+  int checked = 0;
+  for (const std::vector<EmitterRecord>& records : {random_emitters(200, 11), equal}) {
+    const LightClusters c = build_light_clusters(records);
+    ASSERT_EQ(c.size(), kMaxLightClusters);
+    auto scan = [&](const LightWeights& w, float u) {
+      const float x = u * w.total;
+      size_t k = 0;
+      while (k + 1 < c.size() && !(w.cdf[k] > x)) ++k;
+      while (!(w.weight[k] > 0.0f)) --k;
+      const double v = std::clamp(static_cast<double>((x - (w.cdf[k] - w.weight[k])) / w.weight[k]), 0.0, 1.0);
+      const double target = v * c.member_cdf[c.first[k + 1] - 1];
+      size_t m = c.first[k];
+      while (m + 1 < c.first[k + 1] && !(c.member_cdf[m] > target)) ++m;
+      return c.members[m];
+    };
+    Pcg32 rng(5, 9);
+    for (int point = 0; point < 200; ++point) {
+      LightWeights w;
+      weigh_light_clusters(c, random_direction(rng) * 3.0f, random_direction(rng), w);
+      if (!(w.total > 0.0f)) continue;
+      std::vector<float> us = {0.0f, std::nextafter(1.0f, 0.0f), 0.5f};
+      for (size_t k = 0; k < c.size(); ++k)
+        for (const float within : {0.0f, 0.125f, 0.25f, 0.5f, 0.75f, 1.0f})
+          us.push_back((w.cdf[k] - w.weight[k] + within * w.weight[k]) / w.total);
+      for (int i = 0; i < 200; ++i) us.push_back(rng.next_float());
+      for (const float u : us) {
+        if (!(u < 1.0f)) continue;
+        ASSERT_EQ(choose_weighted_light(c, w, u).index, scan(w, u)) << "u = " << u << " at point " << point;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 20000);
+}
+
 // Weights past a float's range (a point a hair from a speck of an emitter) say so, and L1 then chooses by power;
 // ordinary ones do not.
 TEST(LightClusters, SayWhenTheirWeightsOverflow) {

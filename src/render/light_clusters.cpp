@@ -230,17 +230,27 @@ LightChoice choose_weighted_light(const LightClusters& c, const LightWeights& we
   if (!(weights.total > 0.0f)) return choice;
   const size_t n = c.size();
   const float x = u * weights.total;
+  // The first cluster whose running weight exceeds x (the last if none does), found without a branch: the running
+  // weights never fall, so the clusters before it are exactly those at or below x. Branches on a random x missed
+  // about once per choice, which made the choice 5% of a frame.
   size_t k = 0;
-  while (k + 1 < n && !(weights.cdf[k] > x)) ++k;
+  for (size_t i = 0; i + 1 < kMaxLightClusters; ++i) k += static_cast<size_t>((i + 1 < n) & !(weights.cdf[i] > x));
   while (!(weights.weight[k] > 0.0f)) --k;  // x rounded up to the total: the last cluster that weighs anything
   const float below = weights.cdf[k] - weights.weight[k];
   const double v = std::clamp(static_cast<double>((x - below) / weights.weight[k]), 0.0, 1.0);
-  // The member: the first whose running power within the cluster exceeds v x the cluster's power.
-  const auto first = c.member_cdf.begin() + c.first[k];
-  const auto last = c.member_cdf.begin() + c.first[k + 1];
-  const double target = v * *(last - 1);
-  const auto at = std::min(std::upper_bound(first, last, target), last - 1);
-  choice.index = c.members[static_cast<size_t>(at - c.member_cdf.begin())];
+  // The member: the first whose running power within the cluster exceeds v x the cluster's power (std::upper_bound,
+  // but halving the range with a conditional move instead of a branch).
+  const double* base = c.member_cdf.data() + c.first[k];
+  size_t length = c.first[k + 1] - c.first[k];
+  const double target = v * base[length - 1];
+  const double* const last = base + length - 1;
+  while (length > 1) {
+    const size_t half = length / 2;
+    base = base[half] <= target ? base + half : base;
+    length -= half;
+  }
+  const double* at = std::min(base + (*base <= target ? 1 : 0), last);
+  choice.index = c.members[static_cast<size_t>(at - c.member_cdf.data())];
   choice.pmf = weights.weight[k] / weights.total * c.share[choice.index];
   return choice;
 }
