@@ -2,6 +2,10 @@
 // of a rectangular light from Lambert's polygon formula. Tolerances come from the estimator's own standard error.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <optional>
+
+#include "core/rng.h"
 #include "render/brdf.h"
 #include "render/camera_light.h"
 #include "render/direct_light.h"
@@ -126,6 +130,103 @@ TEST_P(ClosedBox, RenderedFilmAveragesToRhoLe) {
     mean /= static_cast<double>(l1.rgb.size());
     // 24 x 24 x 3 channels x 256 samples each: the image mean is known to well under 1%.
     EXPECT_NEAR(mean, 0.9, 0.009) << kSamplerKindNames[static_cast<size_t>(sampler)];
+  }
+}
+
+// A closed sphere of 4608 emitting triangles: L1 = rho Le at every point inside. Under `importance` its clusters are
+// far larger than kMaxMembersByPower, so each shadow ray's emitter is found by descending a cluster's tree: the
+// estimate must stay rho Le all over the wall.
+TEST(ManyEmitters, ImportanceTreesKeepDirectLightInAClosedSphereAtRhoLe) {
+  const Vec3 rho(0.5f, 0.7f, 0.3f), le(2.0f, 1.0f, 4.0f);
+  const auto traced = prepare_scene(test::make_closed_emitting_sphere(1.0f, 96, 24, rho, le));
+  ASSERT_GT(traced->lights.size(), 4000u);
+  ASSERT_FALSE(traced->lights.clusters.tree.empty());
+  DirectLightOptions options;
+  options.strategy = LightStrategy::kImportance;
+  options.blinn_k = 1.0f;
+  Pcg32 rng(3, 3);
+  for (int point = 0; point < 6; ++point) {
+    const float z = 2.0f * rng.next_float() - 1.0f, phi = 2.0f * kPi * rng.next_float();
+    const float s = std::sqrt(1.0f - z * z);
+    const Ray ray{Vec3(0.0f), Vec3(s * std::cos(phi), s * std::sin(phi), z)};
+    const Hit hit = intersect_closest(traced->accel, ray);
+    ASSERT_TRUE(hit.found());
+    const SurfacePoint sp = make_surface_point(traced->scene, ray, hit);
+    const Estimate e = estimate_with_error(*traced, sp, options, 4000, 11 + static_cast<uint64_t>(point));
+    expect_within_error(e, rho * le, "point " + std::to_string(point));
+  }
+}
+
+// 800 small emitting panels (1600 triangles) of four brightnesses, in one plane 0.3 above a floor (so that none
+// shadows another): L1 on the floor is rho / pi x the sum of Lambert's formula over the panels. Under `importance`
+// the trees inside the clusters find the panels near the point; choosing within clusters by power, as `power` does
+// over all of them, spends most shadow rays on far panels, which leaves several times the noise.
+TEST(ManyEmitters, ImportanceTreesMatchLambertUnderAGridOfPanelsWithLessNoiseThanPower) {
+  Scene scene;
+  scene.name = "panels";
+  Material floor;
+  floor.name = "floor";
+  floor.kd = Vec3(0.6f, 0.5f, 0.4f);
+  scene.materials.push_back(floor);
+  for (int m = 0; m < 4; ++m) {
+    Material light;
+    light.name = "light" + std::to_string(m);
+    light.kd = Vec3(0.0f);
+    light.ke = Vec3(1.0f + 3.0f * static_cast<float>(m), 2.0f, 1.0f);
+    scene.materials.push_back(light);
+  }
+  auto add_quad = [&](Vec3 a, Vec3 b, Vec3 c, Vec3 d, uint32_t material) {
+    const auto base = static_cast<uint32_t>(scene.positions.size());
+    scene.positions.insert(scene.positions.end(), {a, b, c, d});
+    for (const auto& corners : {std::array<uint32_t, 3>{0, 1, 2}, std::array<uint32_t, 3>{0, 2, 3}}) {
+      Triangle t;
+      t.v[0] = base + corners[0], t.v[1] = base + corners[1], t.v[2] = base + corners[2];
+      t.material = material;
+      scene.triangles.push_back(t);
+    }
+  };
+  const float f = 20.0f, height = 0.3f;
+  add_quad({-f, 0, -f}, {-f, 0, f}, {f, 0, f}, {f, 0, -f}, 0);  // normal +y
+  struct Panel {
+    std::vector<glm::dvec3> corners;
+    double le[3];
+  };
+  std::vector<Panel> panels;
+  Pcg32 rng(8, 8);
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 20; ++j) {
+      // Cells of 0.15 x 0.2 over [-3, 3] x [-2, 2], each panel a random part of its cell.
+      const float x0 = -3.0f + 0.15f * static_cast<float>(i), z0 = -2.0f + 0.2f * static_cast<float>(j);
+      const float w = 0.15f * (0.2f + 0.7f * rng.next_float()), d = 0.2f * (0.2f + 0.7f * rng.next_float());
+      const auto material = static_cast<uint32_t>(1 + (i * 7 + j * 3) % 4);
+      const Vec3 a(x0, height, z0), b(x0 + w, height, z0), c(x0 + w, height, z0 + d), e(x0, height, z0 + d);
+      add_quad(a, b, c, e, material);  // normal -y
+      const Vec3 ke = scene.materials[material].ke;
+      panels.push_back({{glm::dvec3(a), glm::dvec3(b), glm::dvec3(c), glm::dvec3(e)}, {ke.r, ke.g, ke.b}});
+    }
+  collect_emitters(scene);
+  const auto traced = prepare_scene(std::move(scene));
+  ASSERT_EQ(traced->lights.size(), 1600u);
+  ASSERT_FALSE(traced->lights.clusters.tree.empty());
+  DirectLightOptions options;
+  options.blinn_k = 1.0f;
+  for (const Vec3 at : {Vec3(0.0f), Vec3(-2.1f, 0.0f, 1.3f), Vec3(2.9f, 0.0f, -1.95f), Vec3(3.5f, 0.0f, 0.0f)}) {
+    const std::optional<SurfacePoint> sp = test::surface_below(*traced, at, 0.1f);
+    ASSERT_TRUE(sp.has_value());
+    Vec3 expected(0.0f);
+    for (const Panel& panel : panels)
+      for (int c = 0; c < 3; ++c)
+        expected[c] += static_cast<float>(
+            test::lambert_irradiance(panel.corners, glm::dvec3(sp->position), glm::dvec3(0, 1, 0), panel.le[c]) / kPi);
+    expected *= Vec3(0.6f, 0.5f, 0.4f);
+    const std::string where = "floor at " + std::to_string(at.x) + ", " + std::to_string(at.z);
+    options.strategy = LightStrategy::kImportance;
+    const Estimate by_tree = estimate_with_error(*traced, *sp, options, 4000, 21);
+    options.strategy = LightStrategy::kPower;
+    const Estimate by_power = estimate_with_error(*traced, *sp, options, 4000, 21);
+    expect_within_error(by_tree, expected, "importance, " + where);
+    expect_within_error(by_power, expected, "power, " + where);
+    EXPECT_LT(by_tree.standard_error.g, 0.5f * by_power.standard_error.g) << where;
   }
 }
 

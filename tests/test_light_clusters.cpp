@@ -87,35 +87,40 @@ TEST(LightClusters, HoldEveryEmitterOnceWithinTheirBounds) {
 // all over each emitter (corners, edges, inside) are tried from random points and normals, among and around the
 // emitters.
 TEST(LightClusters, NeverWeighNothingWhereAnEmitterCanLightThePoint) {
-  const std::vector<EmitterRecord> records = random_emitters(60, 11);
-  const LightClusters c = build_light_clusters(records);
-  Pcg32 rng(42, 1);
-  int zero_weights = 0, checked = 0;
-  for (int trial = 0; trial < 3000; ++trial) {
-    const Vec3 p(2.4f * rng.next_float() - 1.2f, 2.4f * rng.next_float() - 1.2f, 2.4f * rng.next_float() - 1.2f);
-    const Vec3 n = random_direction(rng);
-    LightWeights w;
-    weigh_light_clusters(c, p, n, w);
-    for (uint32_t i = 0; i < records.size(); ++i) {
-      const EmitterRecord& e = records[i];
-      const float pmf = weighted_light_pmf(c, w, i);
-      if (pmf > 0.0f) continue;
-      ++zero_weights;
-      for (int s = 0; s < 64; ++s) {
-        const Vec2 b = s < 3 ? Vec2(s == 1, s == 2) : sample_uniform_triangle(rng.next_float(), rng.next_float());
-        const Vec3 x = (1.0f - b.x - b.y) * e.p0 + b.x * e.p1 + b.y * e.p2;
-        const Vec3 wi = glm::normalize(x - p);
-        const float cos_surface = glm::dot(n, wi), cos_light = -glm::dot(e.normal, wi);
-        ++checked;
-        ASSERT_FALSE(cos_surface > 1e-4f && cos_light > 1e-4f)
-            << "emitter " << i << " lights the point with cosines " << cos_surface << ", " << cos_light
-            << " yet weighs nothing";
+  // 60 emitters (clusters of a few, chosen by power) and 400 (clusters large enough to choose by their trees).
+  for (const int count : {60, 400}) {
+    const std::vector<EmitterRecord> records = random_emitters(count, 11);
+    const LightClusters c = build_light_clusters(records);
+    EXPECT_EQ(c.tree.empty(), count == 60);
+    Pcg32 rng(42, 1);
+    const int trials = 180000 / count;
+    int zero_weights = 0, checked = 0;
+    for (int trial = 0; trial < trials; ++trial) {
+      const Vec3 p(2.4f * rng.next_float() - 1.2f, 2.4f * rng.next_float() - 1.2f, 2.4f * rng.next_float() - 1.2f);
+      const Vec3 n = random_direction(rng);
+      LightWeights w;
+      weigh_light_clusters(c, p, n, w);
+      for (uint32_t i = 0; i < records.size(); ++i) {
+        const EmitterRecord& e = records[i];
+        const float pmf = weighted_light_pmf(c, w, i);
+        if (pmf > 0.0f) continue;
+        ++zero_weights;
+        for (int s = 0; s < 64; ++s) {
+          const Vec2 b = s < 3 ? Vec2(s == 1, s == 2) : sample_uniform_triangle(rng.next_float(), rng.next_float());
+          const Vec3 x = (1.0f - b.x - b.y) * e.p0 + b.x * e.p1 + b.y * e.p2;
+          const Vec3 wi = glm::normalize(x - p);
+          const float cos_surface = glm::dot(n, wi), cos_light = -glm::dot(e.normal, wi);
+          ++checked;
+          ASSERT_FALSE(cos_surface > 1e-4f && cos_light > 1e-4f)
+              << "emitter " << i << " of " << count << " lights the point with cosines " << cos_surface << ", "
+              << cos_light << " yet weighs nothing";
+        }
       }
     }
+    // The test must have tried cases: about half the emitters are behind the horizon or face away.
+    EXPECT_GT(zero_weights, trials * count / 4);
+    EXPECT_GT(checked, 0);
   }
-  // The test must have tried cases: about half the emitters are behind the horizon or face away.
-  EXPECT_GT(zero_weights, 3000 * 60 / 4);
-  EXPECT_GT(checked, 0);
 }
 
 TEST(LightClusters, ChoicesComeAsOftenAsTheirPmfSays) {
@@ -159,7 +164,7 @@ TEST(LightClusters, ChoicesComeAsOftenAsTheirPmfSays) {
 // The choice inverts the two-level cdf exactly as a plain scan would: the first cluster whose running weight exceeds
 // u x total, then the first member whose running power exceeds its share of it. Checked against that scan (written
 // out here) at random numbers and at the edges (0, just below 1, and exactly on the clusters' boundaries), over
-// clusters of one to many members.
+// clusters of one to sixteen members (larger ones choose by a tree, tested below).
 TEST(LightClusters, ChoicesInvertTheirCdfAsAScanWould) {
   // Random emitters, and 64 equal ones in a row (clusters of equal members, whose running powers 1, 2, 3... a number
   // lands on exactly).
@@ -187,7 +192,7 @@ TEST(LightClusters, ChoicesInvertTheirCdfAsAScanWould) {
       const double target = v * c.member_cdf[c.first[k + 1] - 1];
       size_t m = c.first[k];
       while (m + 1 < c.first[k + 1] && !(c.member_cdf[m] > target)) ++m;
-      return c.members[m];
+      return std::pair<size_t, uint32_t>(k, c.members[m]);
     };
     Pcg32 rng(5, 9);
     for (int point = 0; point < 200; ++point) {
@@ -201,12 +206,80 @@ TEST(LightClusters, ChoicesInvertTheirCdfAsAScanWould) {
       for (int i = 0; i < 200; ++i) us.push_back(rng.next_float());
       for (const float u : us) {
         if (!(u < 1.0f)) continue;
-        ASSERT_EQ(choose_weighted_light(c, w, u).index, scan(w, u)) << "u = " << u << " at point " << point;
+        const auto [cluster, member] = scan(w, u);
+        const LightChoice choice = choose_weighted_light(c, w, u);
+        const uint32_t chosen = choice.index;
+        // A cluster with a tree chooses its member by the tree (tested below; pmf 0 where no node in it can light
+        // the point); the cluster is chosen the same way.
+        if (c.root[cluster] != kNoTreeNode) {
+          if (choice.pmf > 0.0f) {
+            ASSERT_EQ(c.cluster_of[chosen], cluster) << "u = " << u << " at point " << point;
+          }
+          continue;
+        }
+        ASSERT_EQ(chosen, member) << "u = " << u << " at point " << point;
         ++checked;
       }
     }
   }
   EXPECT_GT(checked, 20000);
+}
+
+// In clusters too large to choose by power, the tree's choices come as often as weighted_light_pmf says, and the
+// samples that find no emitter (every node below a cluster's cut weighing nothing) as often as the pmfs fall short
+// of 1.
+TEST(LightClusters, TreeChoicesComeAsOftenAsTheirPmfSays) {
+  const std::vector<EmitterRecord> records = random_emitters(400, 3);
+  const LightClusters c = build_light_clusters(records);
+  ASSERT_FALSE(c.tree.empty());
+  const std::vector<std::pair<Vec3, Vec3>> points = {{Vec3(0.0f, -1.5f, 0.0f), Vec3(0.0f, 1.0f, 0.0f)},
+                                                     {Vec3(0.3f, 0.2f, -0.4f), glm::normalize(Vec3(1.0f, 1.0f, 0.0f))},
+                                                     {Vec3(0.9f, 0.9f, 0.9f), glm::normalize(Vec3(-1.0f))}};
+  for (const auto& [position, normal] : points) {
+    LightWeights w;
+    weigh_light_clusters(c, position, normal, w);
+    ASSERT_GT(w.total, 0.0f);
+    std::vector<double> expected(records.size() + 1, 0.0);  // the last: no emitter
+    double total_pmf = 0.0;
+    for (uint32_t i = 0; i < records.size(); ++i) total_pmf += expected[i] = weighted_light_pmf(c, w, i);
+    ASSERT_LT(total_pmf, 1.0 + 1e-5);
+    expected.back() = std::max(0.0, 1.0 - total_pmf);
+    constexpr int kSamples = 1000000;
+    std::vector<int> counts(records.size() + 1, 0);
+    Pcg32 rng(17, static_cast<uint64_t>(position.y * 100.0f + 500.0f));
+    for (int s = 0; s < kSamples; ++s) {
+      const LightChoice choice = choose_weighted_light(c, w, rng.next_float());
+      if (!(choice.pmf > 0.0f)) {
+        ++counts.back();
+        continue;
+      }
+      ASSERT_LT(choice.index, records.size());
+      ASSERT_FLOAT_EQ(choice.pmf, weighted_light_pmf(c, w, choice.index));
+      ++counts[choice.index];
+    }
+    // Bins expected fewer than 5 times pooled into one, as the chi-square test needs.
+    double chi2 = 0.0, pooled_expected = 0.0;
+    int pooled_count = 0, dof = -1;
+    for (size_t i = 0; i < expected.size(); ++i) {
+      const double e = kSamples * expected[i];
+      if (e == 0.0) {
+        EXPECT_EQ(counts[i], 0) << "emitter " << i << " has pmf 0 yet was chosen";
+        continue;
+      }
+      if (e < 5.0) {
+        pooled_expected += e, pooled_count += counts[i];
+        continue;
+      }
+      chi2 += (counts[i] - e) * (counts[i] - e) / e;
+      ++dof;
+    }
+    if (pooled_expected > 0.0) {
+      chi2 += (pooled_count - pooled_expected) * (pooled_count - pooled_expected) / pooled_expected;
+      ++dof;
+    }
+    EXPECT_GT(dof, 50);
+    EXPECT_FALSE(test::chi_square_rejects(chi2, dof)) << chi2 << " for " << dof << " at " << position.y;
+  }
 }
 
 // Weights past a float's range (a point a hair from a speck of an emitter) say so, and L1 then chooses by power;

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include "render/light_bounds.h"
+
 namespace lueur {
 namespace {
 
@@ -13,10 +15,6 @@ struct Box {
   Vec3 centre() const { return 0.5f * (lo + hi); }
   Vec3 extent() const { return hi - lo; }
 };
-
-/// Below this cosine at the surface (relative to the distance to the farthest corner), a cluster counts as under the
-/// horizon.
-constexpr float kHorizonTolerance = 1e-5f;
 
 Vec3 centroid(const EmitterRecord& e) { return (e.p0 + e.p1 + e.p2) * (1.0f / 3.0f); }
 
@@ -51,8 +49,10 @@ Range measure(const std::vector<EmitterRecord>& records, const std::vector<doubl
 }
 
 /// Splits [begin, end) of `order` in two non-empty parts: at the middle of the centroids' longest extent, or, where
-/// that leaves one side empty (centroids bunched at one end), at the median. Returns the first index of the second.
-size_t split(const std::vector<EmitterRecord>& records, std::vector<uint32_t>& order, size_t begin, size_t end) {
+/// that leaves one side empty (centroids bunched at one end) or `median_only` says so, at the median. Returns the
+/// first index of the second.
+size_t split(const std::vector<EmitterRecord>& records, std::vector<uint32_t>& order, size_t begin, size_t end,
+             bool median_only = false) {
   Box box;
   for (size_t k = begin; k < end; ++k) box.grow(centroid(records[order[k]]));
   const Vec3 extent = box.extent();
@@ -62,7 +62,7 @@ size_t split(const std::vector<EmitterRecord>& records, std::vector<uint32_t>& o
   const auto last = order.begin() + static_cast<std::ptrdiff_t>(end);
   // stable_partition: the same clusters whatever the standard library's unstable algorithms do.
   const auto cut = std::stable_partition(first, last, [&](uint32_t i) { return centroid(records[i])[axis] < middle; });
-  if (cut != first && cut != last) return static_cast<size_t>(cut - order.begin());
+  if (!median_only && cut != first && cut != last) return static_cast<size_t>(cut - order.begin());
   const auto mid = first + static_cast<std::ptrdiff_t>((end - begin) / 2);
   std::stable_sort(first, last, [&](uint32_t a, uint32_t b) {
     const float ca = centroid(records[a])[axis], cb = centroid(records[b])[axis];
@@ -71,51 +71,52 @@ size_t split(const std::vector<EmitterRecord>& records, std::vector<uint32_t>& o
   return static_cast<size_t>(mid - order.begin());
 }
 
-/// Appends the bounds of the cluster holding `order[r.begin, r.end)`.
+/// Past this depth a tree splits at the median only, so that its depth stays logarithmic whatever the emitters' layout.
+constexpr int kMaxMiddleSplitDepth = 40;
+
+/// The largest double below 1: a rescaled number stays in [0, 1).
+constexpr double kOneBelowOne = 1.0 - 0x1p-53;
+
+/// Fills tree node `node` over `order[begin, end)` and, below it, the nodes of its subtree: two children each, down
+/// to one emitter per leaf. A leaf holds its emitter's slot in `members`: `slot_base` plus its place in the cluster.
+void build_tree(LightClusters& c, const std::vector<EmitterRecord>& records, const std::vector<double>& weights,
+                std::vector<uint32_t>& order, size_t cluster_begin, uint32_t slot_base, double power_scale,
+                uint32_t node, size_t begin, size_t end, int depth) {
+  c.tree[node].bounds = bound_emitters(records, weights, order.data() + begin, end - begin, power_scale);
+  if (end - begin == 1) {
+    c.tree[node].leaf = true;
+    c.tree[node].first = slot_base + static_cast<uint32_t>(begin - cluster_begin);
+    c.leaf_of[order[begin]] = node;
+    return;
+  }
+  const size_t cut = split(records, order, begin, end, depth >= kMaxMiddleSplitDepth);
+  const auto left = static_cast<uint32_t>(c.tree.size());
+  c.tree.resize(c.tree.size() + 2);
+  c.parent.resize(c.tree.size(), node);
+  c.tree[node].first = left;
+  build_tree(c, records, weights, order, cluster_begin, slot_base, power_scale, left, begin, cut, depth + 1);
+  build_tree(c, records, weights, order, cluster_begin, slot_base, power_scale, left + 1, cut, end, depth + 1);
+}
+
+/// Appends the cluster holding `order[r.begin, r.end)`: its bounds and members, and, when it holds more than
+/// kMaxMembersByPower emitters, the tree that chooses among them (which reorders the range).
 void add_cluster(LightClusters& c, const std::vector<EmitterRecord>& records, const std::vector<double>& weights,
-                 const std::vector<uint32_t>& order, const Range& r, double power_scale) {
-  Box box;
-  glm::dvec3 normal_sum(0.0);
-  double area_sum = 0.0;
-  for (size_t k = r.begin; k < r.end; ++k) {
-    const EmitterRecord& e = records[order[k]];
-    box.grow(e.p0), box.grow(e.p1), box.grow(e.p2);
-    normal_sum += static_cast<double>(e.area) * glm::dvec3(e.normal);
-    area_sum += e.area;
-  }
+                 std::vector<uint32_t>& order, const Range& r, double power_scale) {
+  const LightBounds b = bound_emitters(records, weights, order.data() + r.begin, r.end - r.begin, power_scale);
   const size_t cluster = c.count++;
-  const Vec3 centre = box.centre();
-  c.cx[cluster] = centre.x, c.cy[cluster] = centre.y, c.cz[cluster] = centre.z;
-  // Half the diagonal, made a hair larger so that rounding never leaves a corner outside.
-  c.radius[cluster] = std::max(r.radius * (1.0f + 1e-5f), std::numeric_limits<float>::min());
-  const double length = glm::length(normal_sum);
-  Vec3 axis(0.0f, 0.0f, 1.0f);
-  float cos_spread = -1.0f;
-  if (length > 1e-6 * area_sum) {
-    axis = Vec3(normal_sum / length);
-    cos_spread = 1.0f;
-    for (size_t k = r.begin; k < r.end; ++k)
-      cos_spread = std::min(cos_spread, glm::dot(axis, records[order[k]].normal));
-    // Rounding must not narrow the cone: widen it by a hair, and to every direction once it is a half-space or more.
-    cos_spread = cos_spread > 1e-3f ? std::min(cos_spread, 1.0f) - 1e-5f : -1.0f;
+  c.cx[cluster] = b.cx, c.cy[cluster] = b.cy, c.cz[cluster] = b.cz, c.radius[cluster] = b.radius;
+  c.ax[cluster] = b.ax, c.ay[cluster] = b.ay, c.az[cluster] = b.az, c.cos_spread[cluster] = b.cos_spread;
+  c.ex[cluster] = b.ex, c.ey[cluster] = b.ey, c.ez[cluster] = b.ez;
+  c.lowest[cluster] = b.lowest, c.tilt[cluster] = b.tilt, c.power[cluster] = b.power;
+  const auto slot_base = static_cast<uint32_t>(c.members.size());
+  c.first.push_back(slot_base);
+  if (r.end - r.begin > kMaxMembersByPower) {
+    const auto root = static_cast<uint32_t>(c.tree.size());
+    c.root[cluster] = root;
+    c.tree.emplace_back();
+    c.parent.push_back(kNoTreeNode);
+    build_tree(c, records, weights, order, r.begin, slot_base, power_scale, root, r.begin, r.end, 0);
   }
-  c.ax[cluster] = axis.x, c.ay[cluster] = axis.y, c.az[cluster] = axis.z;
-  c.cos_spread[cluster] = cos_spread;
-  const Vec3 half = 0.5f * box.extent() * (1.0f + 1e-5f);
-  c.ex[cluster] = half.x, c.ey[cluster] = half.y, c.ez[cluster] = half.z;
-  // Where the point must be for some emitter of the cluster to face it: in front of the plane through the lowest
-  // corner along the axis, by up to tilt x (distance to the farthest corner) when the normals lean off the axis.
-  float lowest = kInfinity;
-  double tilt = 0.0;
-  for (size_t k = r.begin; k < r.end; ++k) {
-    const EmitterRecord& e = records[order[k]];
-    lowest = std::min({lowest, glm::dot(axis, e.p0), glm::dot(axis, e.p1), glm::dot(axis, e.p2)});
-    tilt = std::max(tilt, glm::length(glm::dvec3(e.normal) - glm::dvec3(axis)));
-  }
-  c.lowest[cluster] = lowest;
-  c.tilt[cluster] = static_cast<float>(tilt) + 1e-6f;  // the normals' own rounding
-  c.power[cluster] = static_cast<float>(r.power * power_scale);
-  c.first.push_back(static_cast<uint32_t>(c.members.size()));
   double running = 0.0;
   for (size_t k = r.begin; k < r.end; ++k) {
     const uint32_t i = order[k];
@@ -127,15 +128,16 @@ void add_cluster(LightClusters& c, const std::vector<EmitterRecord>& records, co
   }
 }
 
-/// cos(max(0, a - b)) for angles a, b in [0, pi] given by their cosines and sines.
-inline float cos_of_clamped_difference(float cos_a, float sin_a, float cos_b, float sin_b) {
-  return cos_a >= cos_b ? 1.0f : cos_a * cos_b + sin_a * sin_b;
+/// The probability of descending from a tree node to its first child, `left` (the second is left + 1): their
+/// weights' share, or their powers' where the weights pass a float's range. Negative when neither weighs anything.
+float left_probability(const LightClusters& c, const ImportanceQuery& q, uint32_t left) {
+  const LightBounds& a = c.tree[left].bounds;
+  const LightBounds& b = c.tree[left + 1].bounds;
+  const float wa = light_importance(q, a), wb = light_importance(q, b);
+  const float sum = wa + wb;
+  if (std::isfinite(sum)) return sum > 0.0f ? wa / sum : -1.0f;
+  return a.power + b.power > 0.0f ? a.power / (a.power + b.power) : 0.5f;
 }
-/// sin(max(0, a - b)), likewise.
-inline float sin_of_clamped_difference(float cos_a, float sin_a, float cos_b, float sin_b) {
-  return cos_a >= cos_b ? 0.0f : sin_a * cos_b - cos_a * sin_b;
-}
-inline float sine_of(float cosine) { return std::sqrt(std::max(0.0f, 1.0f - cosine * cosine)); }
 
 }  // namespace
 
@@ -164,6 +166,7 @@ LightClusters build_light_clusters(const std::vector<EmitterRecord>& records) {
                   measure(records, weights, order, cut, r.end));
   }
   clusters.cluster_of.resize(records.size());
+  clusters.leaf_of.assign(records.size(), kNoTreeNode);
   clusters.share.resize(records.size());
   // Powers relative to the brightest cluster's: a scene of absurd Ke stays within a float.
   double brightest = 0.0;
@@ -176,39 +179,15 @@ LightClusters build_light_clusters(const std::vector<EmitterRecord>& records) {
 /// Weighs clusters [0, kLanes) (kLanes a multiple of four at least the count: a fixed trip count, which the compiler
 /// weighs four at a time).
 template <size_t kLanes>
-void weigh_lanes(const LightClusters& c, const Vec3& position, const Vec3& normal, LightWeights& weights) {
-  // Copies, so that the compiler need not fear that writing the weights changes them.
-  const float px = position.x, py = position.y, pz = position.z, nx = normal.x, ny = normal.y, nz = normal.z;
-  const float ax_nx = std::fabs(nx), ax_ny = std::fabs(ny), ax_nz = std::fabs(nz);
+void weigh_lanes(const LightClusters& c, const ImportanceQuery& q, LightWeights& weights) {
   LightClusters::PerCluster out{};
   for (size_t k = 0; k < kLanes; ++k) {
-    const float dx = c.cx[k] - px, dy = c.cy[k] - py, dz = c.cz[k] - pz;
-    const float d2 = dx * dx + dy * dy + dz * dz;
-    const float r2 = c.radius[k] * c.radius[k];
-    // Inside the bounding sphere every direction may reach the cluster: both cosines are bounded by 1 only.
-    const bool inside = !(d2 > r2);
-    const float inv_d = 1.0f / std::sqrt(inside ? r2 : d2);
-    const float sin_b = std::min(1.0f, c.radius[k] * inv_d), cos_b = sine_of(sin_b);  // the sphere's half-angle
-    // At the surface: the angle between the normal and the direction to the centre, less the sphere's half-angle.
-    const float cos_i = (nx * dx + ny * dy + nz * dz) * inv_d;
-    const float surface = cos_of_clamped_difference(cos_i, sine_of(cos_i), cos_b, sin_b);
-    // At the emitters: the angle between the cone's axis and the direction to the point, less the cone's half-angle
-    // and the sphere's half-angle.
-    const float cos_w = -(c.ax[k] * dx + c.ay[k] * dy + c.az[k] * dz) * inv_d;
-    const float sin_w = sine_of(cos_w), cos_o = c.cos_spread[k], sin_o = sine_of(cos_o);
-    const float cos_x = cos_of_clamped_difference(cos_w, sin_w, cos_o, sin_o);
-    const float sin_x = sin_of_clamped_difference(cos_w, sin_w, cos_o, sin_o);
-    const float emitter = cos_of_clamped_difference(cos_x, sin_x, cos_b, sin_b);
-    const float weight = c.power[k] * std::max(surface, 0.0f) * std::max(emitter, 0.0f) * (inv_d * inv_d);
-    // Tests that hold close or far: some corner of the box above the horizon, the point in front of some emitter.
-    // The first allows for rounding, which decides for an emitter in the surface's own plane (a wall lamp's other
-    // triangles, seen from one of them): one whose every point is below a cosine of 1e-5 at the surface sends
-    // nothing worth a shadow ray.
-    const float reach = std::sqrt(d2) + c.radius[k];
-    const float highest_above = nx * dx + ny * dy + nz * dz + ax_nx * c.ex[k] + ax_ny * c.ey[k] + ax_nz * c.ez[k];
-    const float in_front = c.ax[k] * px + c.ay[k] * py + c.az[k] * pz - c.lowest[k] + c.tilt[k] * reach;
-    const bool can_light = (highest_above > kHorizonTolerance * reach) & (in_front > 0.0f);
-    out[k] = can_light ? (inside ? c.power[k] * inv_d * inv_d : weight) : 0.0f;
+    LightBounds b;
+    b.cx = c.cx[k], b.cy = c.cy[k], b.cz = c.cz[k], b.radius = c.radius[k];
+    b.ax = c.ax[k], b.ay = c.ay[k], b.az = c.az[k], b.cos_spread = c.cos_spread[k];
+    b.ex = c.ex[k], b.ey = c.ey[k], b.ez = c.ez[k];
+    b.lowest = c.lowest[k], b.tilt = c.tilt[k], b.power = c.power[k];
+    out[k] = light_importance(q, b);
   }
   weights.weight = out;
   float running = 0.0f;
@@ -220,10 +199,38 @@ void weigh_lanes(const LightClusters& c, const Vec3& position, const Vec3& norma
 void weigh_light_clusters(const LightClusters& c, const Vec3& position, const Vec3& normal, LightWeights& weights) {
   // A scene with one or two emitters weighs four lanes, not sixteen.
   static_assert(kMaxLightClusters == 16);
-  if (c.count <= 4) return weigh_lanes<4>(c, position, normal, weights);
-  if (c.count <= 8) return weigh_lanes<8>(c, position, normal, weights);
-  weigh_lanes<16>(c, position, normal, weights);
+  weights.position = position, weights.normal = normal;
+  // Copies, so that the compiler need not fear that writing the weights changes them.
+  const ImportanceQuery q(position, normal);
+  if (c.count <= 4) return weigh_lanes<4>(c, q, weights);
+  if (c.count <= 8) return weigh_lanes<8>(c, q, weights);
+  weigh_lanes<16>(c, q, weights);
 }
+
+namespace {
+
+/// The member of cluster k (which has a tree) for v in [0, 1]: down from the root, a child by its share of the two
+/// children's weights at the point, with v rescaled inside that share.
+LightChoice choose_in_tree(const LightClusters& c, const LightWeights& weights, size_t k, double v) {
+  const ImportanceQuery q(weights.position, weights.normal);
+  float pmf = weights.weight[k] / weights.total;
+  uint32_t node = c.root[k];
+  v = std::min(v, kOneBelowOne);  // so that a child of probability 1 is always the one taken
+  while (!c.tree[node].leaf) {
+    const uint32_t left = c.tree[node].first;
+    const float p_left = left_probability(c, q, left);
+    if (p_left < 0.0f) return LightChoice{};  // neither child can light the point: no shadow ray
+    if (v < p_left) {
+      v /= p_left, node = left, pmf *= p_left;
+    } else {
+      v = (v - p_left) / (1.0 - p_left), node = left + 1, pmf *= 1.0f - p_left;
+    }
+    v = std::min(v, kOneBelowOne);
+  }
+  return LightChoice{c.members[c.tree[node].first], pmf};
+}
+
+}  // namespace
 
 LightChoice choose_weighted_light(const LightClusters& c, const LightWeights& weights, float u) {
   LightChoice choice;
@@ -238,6 +245,7 @@ LightChoice choose_weighted_light(const LightClusters& c, const LightWeights& we
   while (!(weights.weight[k] > 0.0f)) --k;  // x rounded up to the total: the last cluster that weighs anything
   const float below = weights.cdf[k] - weights.weight[k];
   const double v = std::clamp(static_cast<double>((x - below) / weights.weight[k]), 0.0, 1.0);
+  if (c.root[k] != kNoTreeNode) return choose_in_tree(c, weights, k, v);
   // The member: the first whose running power within the cluster exceeds v x the cluster's power (std::upper_bound,
   // but halving the range with a conditional move instead of a branch).
   const double* base = c.member_cdf.data() + c.first[k];
@@ -257,7 +265,20 @@ LightChoice choose_weighted_light(const LightClusters& c, const LightWeights& we
 
 float weighted_light_pmf(const LightClusters& c, const LightWeights& weights, uint32_t index) {
   if (!(weights.total > 0.0f)) return 0.0f;
-  return weights.weight[c.cluster_of[index]] / weights.total * c.share[index];
+  const uint32_t k = c.cluster_of[index];
+  if (c.root[k] == kNoTreeNode) return weights.weight[k] / weights.total * c.share[index];
+  // The path from the root to the emitter's leaf, then the same products as choose_in_tree, in the same order.
+  std::vector<uint32_t> path;
+  for (uint32_t node = c.leaf_of[index]; node != kNoTreeNode; node = c.parent[node]) path.push_back(node);
+  const ImportanceQuery q(weights.position, weights.normal);
+  float pmf = weights.weight[k] / weights.total;
+  for (size_t i = path.size() - 1; i > 0; --i) {
+    const uint32_t left = c.tree[path[i]].first;
+    const float p_left = left_probability(c, q, left);
+    if (p_left < 0.0f) return 0.0f;
+    pmf *= path[i - 1] == left ? p_left : 1.0f - p_left;
+  }
+  return pmf;
 }
 
 }  // namespace lueur

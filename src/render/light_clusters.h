@@ -17,10 +17,22 @@
 #include <vector>
 
 #include "render/emitter.h"
+#include "render/light_bounds.h"
 
 namespace lueur {
 
 inline constexpr size_t kMaxLightClusters = 16;
+/// A cluster of at most this many emitters chooses among them by power; a larger one by a tree over them.
+inline constexpr size_t kMaxMembersByPower = 16;
+inline constexpr uint32_t kNoTreeNode = 0xffffffffu;
+
+/// A node of a tree over a large cluster's emitters: two children (`first` and `first + 1` in the tree's array), or,
+/// at a leaf, one emitter (`first` is its slot in `members`).
+struct LightTreeNode {
+  LightBounds bounds;
+  uint32_t first = 0;
+  bool leaf = false;
+};
 
 struct LightClusters {
   /// Per cluster, in fixed arrays so that weighing them all at a point is one loop of known length without branches
@@ -40,6 +52,13 @@ struct LightClusters {
   std::vector<double> member_cdf;    ///< per member: running power within its cluster
   std::vector<uint32_t> cluster_of;  ///< per light-table index: its cluster
   std::vector<float> share;          ///< per light-table index: its power / its cluster's power
+  /// Clusters of more than kMaxMembersByPower emitters choose one by descending a binary tree over them, weighing
+  /// two children at a time at the point (pbrt-v4's light BVH below the cut).
+  std::array<uint32_t, kMaxLightClusters> root;  ///< per cluster: its tree's root, or kNoTreeNode
+  std::vector<LightTreeNode> tree;               ///< every cluster's tree nodes
+  std::vector<uint32_t> parent;                  ///< per tree node: its parent, or kNoTreeNode at a root
+  std::vector<uint32_t> leaf_of;                 ///< per light-table index: its leaf, or kNoTreeNode outside trees
+  LightClusters() { root.fill(kNoTreeNode); }
   size_t size() const { return count; }
 };
 
@@ -57,6 +76,7 @@ struct LightWeights {
   /// The weights passed a float's range (a point absurdly close to an absurdly small emitter): the caller chooses by
   /// power instead.
   bool overflowed = false;
+  Vec3 position{0.0f}, normal{0.0f};  ///< the point weighed (the trees inside large clusters weigh there again)
 };
 
 /// Weighs the clusters at `position`, whose light must arrive on the side of the unit `normal`.
@@ -64,7 +84,8 @@ void weigh_light_clusters(const LightClusters& clusters, const Vec3& position, c
                           LightWeights& weights);
 
 /// One emitter for u in [0, 1): a cluster by weight, then, with u rescaled inside the cluster's share (which keeps
-/// the numbers' stratification), one of its emitters by power. pmf 0 when no cluster weighs anything.
+/// the numbers' stratification), one of its emitters by power, or, in a cluster with a tree, by descending it. pmf 0
+/// when no cluster (or no node of the tree) weighs anything.
 LightChoice choose_weighted_light(const LightClusters& clusters, const LightWeights& weights, float u);
 
 /// Probability that `choose_weighted_light` returns light-table index `index` with these weights.
