@@ -137,6 +137,20 @@ TEST_F(Cli, DefaultSceneRendersWithEveryStrategy) {
   }
 }
 
+// An empty --passes renders (the panel allows unchecking every pass) but says why the image is black; a pass named
+// says nothing of the kind.
+TEST_F(Cli, EmptyPassesWarnThatTheImageIsBlack) {
+  const std::string out = dir_ + "/black.pfm";
+  const test::CommandResult none = test::run_lueur("--headless --size 8x8 --frames 1 --passes '' --out '" + out + "'");
+  ASSERT_EQ(none.exit_code, 0) << none.output;
+  EXPECT_NE(none.output.find("warning: --passes names no pass"), std::string::npos) << none.output;
+  const Image image = decode_pfm(test::read_file(out));
+  for (const float v : image.rgb) ASSERT_EQ(v, 0.0f);
+  const test::CommandResult some = test::run_lueur("--headless --size 8x8 --frames 1 --passes ao --out '" + out + "'");
+  ASSERT_EQ(some.exit_code, 0) << some.output;
+  EXPECT_EQ(some.output.find("names no pass"), std::string::npos) << some.output;
+}
+
 // An option given twice takes its last value: the image is byte for byte the one the last values alone give, and
 // only the last --out is written.
 TEST_F(Cli, RepeatedOptionsTakeTheirLastValue) {

@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -185,6 +186,9 @@ RenderJob prepare_render_job(const AppOptions& options, bool writes_output) {
     for (const std::string& w : job.opened.warnings) std::fprintf(stderr, "lueur: warning: %s\n", w.c_str());
   if (writes_output && !options.settings.camera)
     for (const std::string& note : job.opened.notes) std::fprintf(stderr, "lueur: %s\n", note.c_str());
+  // Allowed (the panel can uncheck every pass too), but a black file with no word of why looks like a bug.
+  if (writes_output && std::none_of(settings.enabled.begin(), settings.enabled.end(), [](bool on) { return on; }))
+    std::fprintf(stderr, "lueur: warning: --passes names no pass: nothing is rendered and the image is black\n");
   job.camera = make_camera(camera_of(options.settings, job.opened.default_view), settings.width, settings.height);
 
   job.film.reset(settings);
