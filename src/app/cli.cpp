@@ -9,6 +9,7 @@
 
 #include "accel/embree_backend.h"
 #include "app/options.h"
+#include "settings/cli_check.h"
 #include "settings/setting_table.h"
 #include "settings/view_file.h"
 
@@ -20,11 +21,6 @@ bool ends_with_png(const std::string& path) {
   std::string ext = path.substr(path.size() - 4);
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return ext == ".png";
-}
-
-/// A CLI11 check of one of the program's own options by `error` (settings/setting_table.h).
-CLI::Validator checked_by(std::string (*error)(const std::string&, const SettingRange&), SettingRange range) {
-  return CLI::Validator([error, range](std::string& text) { return error(text, range); }, "");
 }
 
 /// One option per row of the settings table; the text given is kept to be applied after any view file.

@@ -18,15 +18,11 @@
 #include "bench/bench_throughput.h"
 #include "core/atomic_file.h"
 #include "scene/obj_loader.h"
+#include "settings/cli_check.h"
 #include "settings/setting_table.h"
 
 namespace lueur::bench {
 namespace {
-
-/// A CLI11 check of an option by `error`, in the words of lueur's own (settings/setting_table.h).
-CLI::Validator checked_by(std::string (*error)(const std::string&, const SettingRange&), SettingRange range) {
-  return CLI::Validator([error, range](std::string& text) { return error(text, range); }, "");
-}
 
 using Json = nlohmann::ordered_json;
 
