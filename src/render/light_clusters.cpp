@@ -60,9 +60,13 @@ size_t split(const std::vector<EmitterRecord>& records, std::vector<uint32_t>& o
   const float middle = box.centre()[axis];
   const auto first = order.begin() + static_cast<std::ptrdiff_t>(begin);
   const auto last = order.begin() + static_cast<std::ptrdiff_t>(end);
-  // stable_partition: the same clusters whatever the standard library's unstable algorithms do.
-  const auto cut = std::stable_partition(first, last, [&](uint32_t i) { return centroid(records[i])[axis] < middle; });
-  if (!median_only && cut != first && cut != last) return static_cast<size_t>(cut - order.begin());
+  if (!median_only) {
+    // stable_partition: the same clusters whatever the standard library's unstable algorithms do.
+    const auto cut =
+        std::stable_partition(first, last, [&](uint32_t i) { return centroid(records[i])[axis] < middle; });
+    if (cut != first && cut != last) return static_cast<size_t>(cut - order.begin());
+  }
+  // The sort's order is total (ties by index), so whatever the partition left, the median is the same.
   const auto mid = first + static_cast<std::ptrdiff_t>((end - begin) / 2);
   std::stable_sort(first, last, [&](uint32_t a, uint32_t b) {
     const float ca = centroid(records[a])[axis], cb = centroid(records[b])[axis];
