@@ -5,6 +5,7 @@
 
 #include <random>
 
+#include "display/window_layout.h"
 #include "image/image_output.h"
 #include "render/noise_view.h"
 #include "test_support.h"
@@ -136,26 +137,74 @@ INSTANTIATE_TEST_SUITE_P(Contexts, GlDisplay, ::testing::Values(HeadlessGl::kEgl
                            return std::string(kHeadlessGlNames[static_cast<size_t>(param_info.param)]);
                          });
 
-TEST(GlDisplay, ThePanelChangesTheImageOnlyWhereItIs) {
+TEST(WindowLayout, ThePanelTakesTheLeftColumnAndTheImageTheRest) {
+  const WindowLayout layout = lay_out_window(852, 512, 852, 512, 340.0);
+  EXPECT_FALSE(layout.panel_over_image);
+  EXPECT_EQ(layout.image.x, 340.0);
+  EXPECT_EQ(layout.image.width, 512.0);
+  EXPECT_EQ(layout.image.height, 512.0);
+  EXPECT_EQ(layout.image_pixels.x, 340);
+  EXPECT_EQ(layout.image_pixels.width, 512);
+  EXPECT_EQ(layout.image_pixels.height, 512);
+  EXPECT_FALSE(layout.image.contains(339.5, 10.0)) << "over the panel";
+  EXPECT_TRUE(layout.image.contains(340.0, 10.0));
+  EXPECT_FALSE(layout.image.contains(852.0, 10.0));
+}
+
+TEST(WindowLayout, AHighDpiFramebufferScalesTheColumn) {
+  const WindowLayout layout = lay_out_window(852, 512, 1704, 1024, 340.0);
+  EXPECT_EQ(layout.image.x, 340.0);  // window coordinates, as the mouse reports them
+  EXPECT_EQ(layout.image_pixels.x, 680);
+  EXPECT_EQ(layout.image_pixels.width, 1024);
+  EXPECT_EQ(layout.image_pixels.height, 1024);
+}
+
+TEST(WindowLayout, ANarrowWindowOrAHiddenPanelGivesTheImageTheWholeWindow) {
+  for (const double panel : {340.0, 0.0}) {
+    const WindowLayout narrow = lay_out_window(400, 300, 400, 300, panel);
+    EXPECT_EQ(narrow.panel_over_image, panel > 0.0);
+    EXPECT_EQ(narrow.image.x, 0.0);
+    EXPECT_EQ(narrow.image_pixels.x, 0);
+    EXPECT_EQ(narrow.image_pixels.width, 400);
+  }
+  const WindowLayout hidden = lay_out_window(852, 512, 852, 512, 0.0);
+  EXPECT_FALSE(hidden.panel_over_image);
+  EXPECT_EQ(hidden.image_pixels.width, 852);
+  const WindowLayout empty = lay_out_window(0, 0, 0, 0, 340.0);  // minimised
+  EXPECT_EQ(empty.image_pixels.width, 0);
+  EXPECT_EQ(empty.image_pixels.height, 0);
+}
+
+TEST(WindowLayout, AWindowSizedForAnImageShowsItAtThatSize) {
+  for (const double panel : {0.0, 240.0, 340.0, 511.5})
+    for (int width = 1; width <= 2000; width += 37) {
+      const int window_width = window_width_for_image(width, panel);
+      const WindowLayout layout = lay_out_window(window_width, 100, window_width, 100, panel);
+      EXPECT_EQ(layout.image_pixels.width, width) << "panel " << panel << ", window " << window_width;
+      EXPECT_EQ(layout.image_pixels.x + layout.image_pixels.width, window_width);
+    }
+}
+
+TEST(GlDisplay, ThePanelSitsBesideTheImageWhichItLeavesAsItWas) {
   const Film film = random_film(480, 420, 3, 9);
   PanelModel panel;
   panel.scene_name = "random film";
   const Screenshot plain = render_headless_screenshot(HeadlessGl::kEgl, film, Settings{});
   const Screenshot with_ui = render_headless_screenshot(HeadlessGl::kEgl, film, Settings{}, &panel);
-  ASSERT_EQ(plain.rgb.size(), with_ui.rgb.size());
-  const auto differs = [&](int x0, int y0, int x1, int y1) {
-    int count = 0;
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x)
-        for (int c = 0; c < 3; ++c) {
-          const size_t i = 3 * (static_cast<size_t>(y) * static_cast<size_t>(film.width) + static_cast<size_t>(x)) + c;
-          count += plain.rgb[i] != with_ui.rgb[i];
-        }
-    return count;
+  const int panel_width = static_cast<int>(kPanelWidth);
+  ASSERT_EQ(with_ui.width, film.width + panel_width) << "the screenshot is as wide as the window: panel and image";
+  ASSERT_EQ(with_ui.height, film.height);
+  const auto at = [](const Screenshot& shot, int x, int y, int c) {
+    return shot.rgb[3 * (static_cast<size_t>(y) * static_cast<size_t>(shot.width) + static_cast<size_t>(x)) + c];
   };
-  const int panel_right = 8 + static_cast<int>(kPanelWidth);
-  EXPECT_GT(differs(8, 8, panel_right, 200), 3 * 200 * 100) << "the panel covers its corner";
-  EXPECT_EQ(differs(panel_right + 4, 0, film.width, film.height), 0) << "and nothing right of it";
+  int image_differs = 0, panel_lit = 0;
+  for (int y = 0; y < film.height; ++y)
+    for (int c = 0; c < 3; ++c) {
+      for (int x = 0; x < film.width; ++x) image_differs += at(plain, x, y, c) != at(with_ui, panel_width + x, y, c);
+      for (int x = 0; x < panel_width; ++x) panel_lit += at(with_ui, x, y, c) != 0;
+    }
+  EXPECT_EQ(image_differs, 0) << "the image beside the panel is the plain screenshot, pixel for pixel";
+  EXPECT_GT(panel_lit, 3 * panel_width * film.height / 2) << "the panel's column is drawn (opaque, not black)";
 }
 
 TEST(GlDisplay, HeadlessScreenshotsThroughTheCommandLine) {

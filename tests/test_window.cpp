@@ -203,10 +203,40 @@ TEST_F(Window, SyntheticInputDrivesThePanelAndTheCamera) {
       << state().dump();
   EXPECT_EQ(state()["view"]["weights"]["l1"].get<float>(), dragged_weight) << "the camera drag moved the slider";
 
-  // Resizing re-renders at the new size.
-  xdotool("windowsize " + window_ + " 320 240");
-  EXPECT_TRUE(wait_for([](const json& s) { return s["view"]["width"] == 320 && s["shown_frames"].get<int>() >= 0; }))
-      << "the render size did not follow the window";
+  // Resizing re-renders at the new size: the image is what the panel's column leaves of the window.
+  xdotool("windowsize " + window_ + " " + std::to_string(panel_right + 320) + " 240");
+  EXPECT_TRUE(wait_for([](const json& s) {
+    return s["view"]["width"] == 320 && s["view"]["height"] == 240 && s["shown_frames"].get<int>() >= 0;
+  })) << "the render size did not follow the window";
+}
+
+TEST_F(Window, TheImageSitsBesideThePanelWhichTabHidesAndItsEdgeWidens) {
+  // --size 512x512 opens a window as wide as the panel and the image together: the image has the size asked for.
+  const json start = state();
+  const int panel_right = static_cast<int>(start["widgets"]["panel"][2].get<float>());
+  EXPECT_EQ(start["widgets"]["panel"][0].get<float>(), 0.0f) << "the panel is docked to the left edge";
+  EXPECT_EQ(start["view"]["width"], 512);
+  const std::string geometry = run_command("xdotool getwindowgeometry --shell " + window_);
+  EXPECT_NE(geometry.find("WIDTH=" + std::to_string(panel_right + 512)), std::string::npos) << geometry;
+
+  // Tab hides the panel: the image takes the whole window; Tab again gives the column back.
+  xdotool("windowfocus --sync " + window_ + " key Tab");
+  ASSERT_TRUE(wait_for([&](const json& s) {
+    return s["view"]["width"] == panel_right + 512 && !s["widgets"].contains("panel");
+  })) << "Tab did not hide the panel: "
+      << state().dump();
+  xdotool("windowfocus --sync " + window_ + " key Tab");
+  ASSERT_TRUE(wait_for([&](const json& s) { return s["view"]["width"] == 512 && s["widgets"].contains("panel"); }))
+      << "Tab did not show the panel again: " << state().dump();
+
+  // Dragging the panel's right edge widens it, and the image beside it narrows by as much.
+  press_and_drag(panel_right - 2, 300, panel_right + 98, 300);
+  xdotool("mouseup 1");
+  ASSERT_TRUE(wait_for([&](const json& s) {
+    const int right = static_cast<int>(s["widgets"]["panel"][2].get<float>());
+    return right > panel_right + 50 && s["view"]["width"] == panel_right + 512 - right;
+  })) << "dragging the panel's edge did not widen it: "
+      << state().dump();
 }
 
 TEST_F(Window, SurvivesATinyWindowAndBeingHidden) {
@@ -252,13 +282,17 @@ TEST_F(Window, KeepsDrawingWhileTheTracerWorks) {
 }
 
 TEST_F(Window, ThePixelInspectorReadsThePixelUnderTheMouseAndARightClickPinsIt) {
-  const int panel_right = static_cast<int>(state()["widgets"]["panel"][2].get<float>());
-  const int x0 = panel_right + 50, y0 = 200, x1 = panel_right + 120, y1 = 300;
+  // The image starts at the panel's right edge; it and the film are both 512 x 512 once the previews are done, so
+  // a window pixel is a film pixel once the column is taken off.
+  const int image_left = static_cast<int>(state()["widgets"]["panel"][2].get<float>());
+  const int x0 = 50, y0 = 200, x1 = 120, y1 = 300;
   const auto at = [](const json& s, int x, int y) {
     return s.contains("probe") && s["probe"]["x"] == x && s["probe"]["y"] == y;
   };
-  xdotool("mousemove --window " + window_ + " " + std::to_string(x0) + " " + std::to_string(y0));
-  // The window and the film are both 512 x 512 once the previews are done: window pixel = film pixel.
+  const auto move_to = [&](int x, int y) {
+    xdotool("mousemove --window " + window_ + " " + std::to_string(image_left + x) + " " + std::to_string(y));
+  };
+  move_to(x0, y0);
   ASSERT_TRUE(wait_for([&](const json& s) { return at(s, x0, y0) && !s["probe"]["pinned"].get<bool>(); }))
       << state().dump();
   // The image's value there is the weighted sum of the passes' (the report's weights, Le + L1 + L2).
@@ -275,7 +309,7 @@ TEST_F(Window, ThePixelInspectorReadsThePixelUnderTheMouseAndARightClickPinsIt) 
   ASSERT_TRUE(wait_for([&](const json& s) { return at(s, x0, y0) && s["probe"]["pinned"].get<bool>(); }))
       << state().dump();
   const uint64_t frames = state()["probe"]["frames"].get<uint64_t>();
-  xdotool("mousemove --window " + window_ + " " + std::to_string(x1) + " " + std::to_string(y1));
+  move_to(x1, y1);
   wait_for_viewer_frames(3.0);
   EXPECT_TRUE(at(state(), x0, y0)) << state().dump();
   EXPECT_TRUE(wait_for([&](const json& s) { return at(s, x0, y0) && s["probe"]["frames"].get<uint64_t>() > frames; }))
@@ -303,8 +337,9 @@ TEST_F(SplitWindow, BothSidesAccumulateAndTheDividerFollowsTheMouse) {
       << state().dump();
   const json before = state();
   EXPECT_EQ(before["view"]["compare"], "lights=uniform");
-  // Drag the divider (at 0.7 of the 512-pixel width, right of the panel) to 0.5: it moves, the camera does not.
-  press_and_drag(358, 300, 256, 300);
+  // Drag the divider (at 0.7 of the image's 512 pixels, right of the panel) to 0.5: it moves, the camera does not.
+  const int image_left = static_cast<int>(before["widgets"]["panel"][2].get<float>());
+  press_and_drag(image_left + 358, 300, image_left + 256, 300);
   xdotool("mouseup 1");
   wait_for_viewer_frames();
   const json after = state();

@@ -23,6 +23,7 @@
 #include "core/file_watch.h"
 #include "display/display_pipeline.h"
 #include "display/split_view.h"
+#include "display/window_layout.h"
 #include "image/image_output.h"
 #include "render/noise_estimate.h"
 #include "render/pixel_probe.h"
@@ -49,6 +50,7 @@ double seconds_between(Clock::time_point a, Clock::time_point b) {
 struct InputEvents {
   double scroll = 0.0;
   std::vector<std::string> dropped;
+  int tab_presses = 0;   ///< counted by the key callback: a quick tap can fall between two polls of the key's state
   MouseButtons buttons;  ///< what ImGui and the camera see, one change per button per frame
 };
 
@@ -104,7 +106,14 @@ class Viewer {
       ImGui::NewFrame();
       panel_.stats = tracer_.stats();
       panel_.status = loading_ ? loading_->status() : std::string();
-      const PanelActions actions = draw_panel(panel_);
+      toggle_panel();
+      layout_ = current_layout();
+      PanelActions actions;
+      if (panel_shown_)
+        actions = draw_panel(panel_, static_cast<float>(layout_.image.height), layout_.panel_over_image);
+      else
+        panel_.widget_rects.clear();
+      layout_ = current_layout();  // the panel's edge may have been dragged
       handle_input();
       handle_actions(actions);
       reload_if_needed();
@@ -135,10 +144,7 @@ class Viewer {
   /// Starts loading `path` (empty: the default scene) in the background; `keep_camera` when it is the scene shown,
   /// read again. A load started before it is done is dropped.
   void start_loading(const std::string& path, bool initial, bool keep_camera = false) {
-    int w = 0, h = 0;
-    glfwGetFramebufferSize(window_, &w, &h);
-    const float aspect = w > 0 && h > 0 ? static_cast<float>(w) / static_cast<float>(h) : 1.0f;
-    loading_ = std::make_unique<SceneLoading>(path, scene_options_of(panel_.settings), aspect);
+    loading_ = std::make_unique<SceneLoading>(path, scene_options_of(panel_.settings), aspect());
     ++scene_loads_;
     loading_is_initial_ = initial;
     reloading_same_scene_ = keep_camera;
@@ -218,19 +224,18 @@ class Viewer {
   /// while it does, so that the drag does not also turn the camera.
   bool drag_divider(const InputEvents& events) {
     const bool left = events.buttons.down[GLFW_MOUSE_BUTTON_LEFT];
-    int width = 0, height = 0;
-    glfwGetWindowSize(window_, &width, &height);
+    const WindowRect& image = layout_.image;
     double x = 0.0, y = 0.0;
     glfwGetCursorPos(window_, &x, &y);
-    if (!left || !right_ || width <= 0) {
+    if (!left || !right_ || image.width <= 0.0) {
       dragging_divider_ = false;
       return false;
     }
-    const double divider = panel_.settings.compare_split * width;
+    const double divider = image.x + panel_.settings.compare_split * image.width;
     if (!dragging_divider_ && !dragging_ && !ImGui::GetIO().WantCaptureMouse && std::abs(x - divider) <= 6.0)
       dragging_divider_ = true;
     if (!dragging_divider_) return false;
-    panel_.settings.compare_split = static_cast<float>(std::clamp(x / width, 0.0, 1.0));
+    panel_.settings.compare_split = static_cast<float>(std::clamp((x - image.x) / image.width, 0.0, 1.0));
     last_cursor_x_ = x;
     last_cursor_y_ = y;
     return true;
@@ -256,8 +261,7 @@ class Viewer {
     }
     CameraSpec& camera = *panel_.settings.camera;
     const ImGuiIO& io = ImGui::GetIO();
-    int width = 0, height = 0;
-    glfwGetWindowSize(window_, &width, &height);
+    const double height = layout_.image.height;
     double x = 0.0, y = 0.0;
     glfwGetCursorPos(window_, &x, &y);
     const float dx = static_cast<float>(x - last_cursor_x_), dy = static_cast<float>(y - last_cursor_y_);
@@ -305,10 +309,26 @@ class Viewer {
     o_was_down_ = o;
   }
 
+  /// The image's aspect ratio, as laid out beside the panel.
   float aspect() const {
-    int w = 0, h = 0;
-    glfwGetFramebufferSize(window_, &w, &h);
-    return w > 0 && h > 0 ? static_cast<float>(w) / static_cast<float>(h) : 1.0f;
+    const PixelRect& image = current_layout().image_pixels;
+    return image.width > 0 && image.height > 0 ? static_cast<float>(image.width) / static_cast<float>(image.height)
+                                               : 1.0f;
+  }
+
+  /// The window shared between the panel (when shown) and the image, as it stands now.
+  WindowLayout current_layout() const {
+    int window_width = 0, window_height = 0, fb_width = 0, fb_height = 0;
+    glfwGetWindowSize(window_, &window_width, &window_height);
+    glfwGetFramebufferSize(window_, &fb_width, &fb_height);
+    return lay_out_window(window_width, window_height, fb_width, fb_height, panel_shown_ ? panel_.panel_width : 0.0);
+  }
+
+  /// Tab hides the panel (the image takes the whole window) and shows it again; not while a text field has the keys.
+  void toggle_panel() {
+    int& presses = events_of(window_).tab_presses;
+    if (!ImGui::GetIO().WantCaptureKeyboard && presses % 2 == 1) panel_shown_ = !panel_shown_;
+    presses = 0;
   }
 
   // ---- panel buttons ----------------------------------------------------------------------------------------
@@ -361,7 +381,9 @@ class Viewer {
       loaded.camera = camera_of(loaded, home_camera_);
       loaded.up.reset();
       panel_.settings = loaded;
-      glfwSetWindowSize(window_, loaded.render.width, loaded.render.height);
+      // The window grows or shrinks so that the image beside the panel has the view's size.
+      glfwSetWindowSize(window_, window_width_for_image(loaded.render.width, panel_shown_ ? panel_.panel_width : 0.0),
+                        loaded.render.height);
       set_message("loaded view " + path, false);
     } catch (const std::exception& e) {
       set_message(e.what(), true);
@@ -392,8 +414,7 @@ class Viewer {
 
   // ---- tracer and display -----------------------------------------------------------------------------------
   void apply_to_tracer() {
-    int w = 0, h = 0;
-    glfwGetFramebufferSize(window_, &w, &h);
+    const int w = layout_.image_pixels.width, h = layout_.image_pixels.height;
     if (w > 0 && h > 0) {  // a minimised window (0 x 0) keeps the last size
       panel_.settings.render.width = w;
       panel_.settings.render.height = h;
@@ -495,10 +516,12 @@ class Viewer {
     gl_.ClearColor(0.0f, 0.0f, 0.0f, 1.0f);
     gl_.Clear(GL_COLOR_BUFFER_BIT);
     const PixelRect full{0, 0, w, h};
+    const PixelRect& image = layout_.image_pixels;
+    if (image.width <= 0 || image.height <= 0) return;
     if (split)
-      draw_split_view(gl_, pipeline_, shown, right_pipeline_, *right_, full, full);
+      draw_split_view(gl_, pipeline_, shown, right_pipeline_, *right_, full, image);
     else if (shown_.film.width > 0)
-      pipeline_.draw(shown, full, full);
+      pipeline_.draw(shown, full, image);
     if (shown.layer && shown_.film.width > 0 && !shown_.film.has(*shown.layer))
       set_message("view " + std::string(kLayerNames[static_cast<size_t>(*shown.layer)]) +
                       " is not rendered with these passes and reuse settings",
@@ -514,12 +537,12 @@ class Viewer {
   /// The pixel inspector's pixel: the one under the mouse while it is over the image (the last one while it is over
   /// the panel), or the one a right click pinned, outlined. Read from the film shown on that side of an A/B split.
   void update_probe() {
-    int width = 0, height = 0;
-    glfwGetWindowSize(window_, &width, &height);
+    const WindowRect& image = layout_.image;
+    const double width = image.width, height = image.height;
     double x = 0.0, y = 0.0;
     glfwGetCursorPos(window_, &x, &y);
-    const bool over_image =
-        !ImGui::GetIO().WantCaptureMouse && x >= 0.0 && y >= 0.0 && x < width && y < height;
+    const bool over_image = !ImGui::GetIO().WantCaptureMouse && image.contains(x, y);
+    x -= image.x;
     const bool right_button = events_of(window_).buttons.down[GLFW_MOUSE_BUTTON_RIGHT];
     if (right_button && !right_button_was_down_ && over_image) {
       panel_.probe_pinned = !panel_.probe_pinned;
@@ -529,8 +552,8 @@ class Viewer {
     right_button_was_down_ = right_button;
     if (!panel_.probe_pinned && over_image) probe_point_ = {x / width, y / height};
     panel_.probe.reset();
-    if (!probe_point_ || width <= 0 || height <= 0) return;
-    // The point is kept as a share of the window, so that a pinned pixel stays put through previews and resizes.
+    if (!probe_point_ || width <= 0.0 || height <= 0.0) return;
+    // The point is kept as a share of the image, so that a pinned pixel stays put through previews and resizes.
     const double px = probe_point_->first * width, py = probe_point_->second * height;
     const bool right_side = split_shown() && px >= panel_.settings.compare_split * width;
     const TracerSnapshot& shown = right_side ? shown_right_ : shown_;
@@ -543,8 +566,9 @@ class Viewer {
     if (panel_.probe_pinned) {
       const float sx = static_cast<float>(width) / static_cast<float>(shown.film.width);
       const float sy = static_cast<float>(height) / static_cast<float>(shown.film.height);
-      draw_pixel_marker(static_cast<float>(pixel->x) * sx, static_cast<float>(pixel->y) * sy,
-                        static_cast<float>(pixel->x + 1) * sx, static_cast<float>(pixel->y + 1) * sy);
+      const float x0 = static_cast<float>(image.x);
+      draw_pixel_marker(x0 + static_cast<float>(pixel->x) * sx, static_cast<float>(pixel->y) * sy,
+                        x0 + static_cast<float>(pixel->x + 1) * sx, static_cast<float>(pixel->y + 1) * sy);
     }
   }
 
@@ -639,6 +663,8 @@ class Viewer {
   uint64_t right_noise_generation_ = ~uint64_t{0};
   std::optional<Settings> right_;  ///< the settings of an A/B split's right side; none without --compare
   bool dragging_divider_ = false;
+  bool panel_shown_ = true;
+  WindowLayout layout_;  ///< this frame's: the panel's column and the image beside it
   uint64_t display_frames_ = 0;
   double frame_seconds_ = 0.0;
   double last_cursor_x_ = 0.0, last_cursor_y_ = 0.0, last_key_time_ = 0.0;
@@ -671,8 +697,9 @@ int run_viewer(const AppOptions& options) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  GLFWwindow* window =
-      glfwCreateWindow(options.settings.render.width, options.settings.render.height, "Lueur", nullptr, nullptr);
+  // Wide enough for the image at its size beside the panel.
+  GLFWwindow* window = glfwCreateWindow(window_width_for_image(options.settings.render.width, kPanelWidth),
+                                        options.settings.render.height, "Lueur", nullptr, nullptr);
   if (!window) throw std::runtime_error("cannot create an OpenGL 3.3 core window");
   glfwMakeContextCurrent(window);
   glfwSwapInterval(1);
@@ -683,6 +710,9 @@ int run_viewer(const AppOptions& options) {
   glfwSetScrollCallback(window, [](GLFWwindow* w, double, double y) { events_of(w).scroll += y; });
   glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
     events_of(w).buttons.record(button, action == GLFW_PRESS);
+  });
+  glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
+    if (key == GLFW_KEY_TAB && action == GLFW_PRESS) ++events_of(w).tab_presses;
   });
   glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
     for (int i = 0; i < count; ++i) events_of(w).dropped.emplace_back(paths[i]);

@@ -6,9 +6,9 @@
 
 namespace lueur {
 
-std::optional<FilmPixel> film_pixel_at(double x, double y, int view_width, int view_height, int film_width,
+std::optional<FilmPixel> film_pixel_at(double x, double y, double view_width, double view_height, int film_width,
                                        int film_height) {
-  if (view_width <= 0 || view_height <= 0 || film_width <= 0 || film_height <= 0) return std::nullopt;
+  if (!(view_width > 0.0 && view_height > 0.0) || film_width <= 0 || film_height <= 0) return std::nullopt;
   if (!(x >= 0.0 && x < view_width && y >= 0.0 && y < view_height)) return std::nullopt;  // NaN too
   const int px = static_cast<int>(std::floor(x * film_width / view_width));
   const int py = static_cast<int>(std::floor(y * film_height / view_height));

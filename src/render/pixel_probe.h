@@ -17,7 +17,7 @@ struct FilmPixel {
 
 /// The film pixel under the point (x, y) of a view that shows the whole film stretched over view_width x
 /// view_height (window coordinates, y down, as the display draws it); nullopt outside the view or for an empty one.
-std::optional<FilmPixel> film_pixel_at(double x, double y, int view_width, int view_height, int film_width,
+std::optional<FilmPixel> film_pixel_at(double x, double y, double view_width, double view_height, int film_width,
                                        int film_height);
 
 struct PixelProbe {

@@ -5,6 +5,7 @@
 
 #include "display/offscreen_target.h"
 #include "display/split_view.h"
+#include "display/window_layout.h"
 #include "settings/compare.h"
 #include "ui/imgui_gl.h"
 
@@ -14,7 +15,7 @@ namespace {
 /// ImGui sizes auto-fitting windows over the first frames; the screenshot is the frame after they settle.
 constexpr int kImguiSettleFrames = 3;
 
-void draw_panel_offscreen(GlGetProcAddress get_proc, PanelModel& panel, int width, int height) {
+void draw_panel_offscreen(GlGetProcAddress get_proc, PanelModel& panel, int width, int height, bool over_image) {
   IMGUI_CHECKVERSION();
   ImGuiContext* context = ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
@@ -26,7 +27,7 @@ void draw_panel_offscreen(GlGetProcAddress get_proc, PanelModel& panel, int widt
     for (int frame = 0; frame < kImguiSettleFrames; ++frame) {
       imgui_opengl_new_frame();
       ImGui::NewFrame();
-      draw_panel(panel);
+      draw_panel(panel, static_cast<float>(height), over_image);
       ImGui::Render();
     }
     imgui_opengl_render();
@@ -45,25 +46,29 @@ Screenshot render_headless_screenshot(HeadlessGl kind, const Film& film, const S
   const HeadlessContext context = create_headless_context(kind);
   const GlApi gl = load_gl_api(context.get_proc);
   Screenshot shot;
-  shot.width = film.width;
+  // With the panel, the screenshot is laid out as the window is: the panel's column, the image beside it.
+  const double panel_width = panel ? panel->panel_width : 0.0;
+  shot.width = window_width_for_image(film.width, panel_width);
   shot.height = film.height;
   shot.context = context.kind + " (" + describe_gl_context(gl) + ")";
   {
     DisplayPipeline pipeline(gl);
-    OffscreenTarget target(gl, film.width, film.height);
+    OffscreenTarget target(gl, shot.width, shot.height);
     pipeline.update(film, 1, shown);
     target.bind();
-    const PixelRect full{0, 0, film.width, film.height};
+    const WindowLayout layout = lay_out_window(shot.width, shot.height, shot.width, shot.height, panel_width);
+    const PixelRect full{0, 0, shot.width, shot.height};
+    const PixelRect& image = layout.image_pixels;
     if (right) {
       const Settings right_shown = compared_settings(shown).value_or(shown);
       DisplayPipeline right_pipeline(gl);
       right_pipeline.update(*right, 1, right_shown);
       target.bind();
-      draw_split_view(gl, pipeline, shown, right_pipeline, right_shown, full, full);
+      draw_split_view(gl, pipeline, shown, right_pipeline, right_shown, full, image);
     } else {
-      pipeline.draw(shown, full, full);
+      pipeline.draw(shown, full, image);
     }
-    if (panel) draw_panel_offscreen(context.get_proc, *panel, film.width, film.height);
+    if (panel) draw_panel_offscreen(context.get_proc, *panel, shot.width, shot.height, layout.panel_over_image);
     shot.rgb = target.read_rgb8();
   }
   return shot;

@@ -399,16 +399,22 @@ void describe_scene(PanelModel& m, const TracedScene& traced) {
   m.has_light_rig = traced.scene.rig_begin != Scene::kNoRig;
 }
 
-PanelActions draw_panel(PanelModel& m) {
+PanelActions draw_panel(PanelModel& m, float height, bool over_image) {
   PanelActions actions;
-  ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(kPanelWidth, 0.0f), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowBgAlpha(0.85f);
-  if (!ImGui::Begin("Lueur")) {
+  // A column docked to the left edge, full height; only its width is the user's (the right edge drags).
+  m.panel_width = std::clamp(m.panel_width, kMinPanelWidth, kMaxPanelWidth);
+  ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(m.panel_width, height), ImGuiCond_Always);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(kMinPanelWidth, height), ImVec2(kMaxPanelWidth, height));
+  ImGui::SetNextWindowBgAlpha(over_image ? 0.85f : 1.0f);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
+                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus;
+  if (!ImGui::Begin("Lueur", nullptr, flags)) {
     ImGui::End();
     return actions;
   }
   ImGui::PushItemWidth(-ImGui::GetFontSize() * 9.0f);  // leave room for the labels on the right
+  ImGui::TextDisabled("Tab hides this panel");
   if (!m.status.empty()) ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.3f, 1.0f), "%s", m.status.c_str());
   if (!m.message.empty()) {
     const ImVec4 colour = m.message_is_error ? ImVec4(1.0f, 0.35f, 0.3f, 1.0f) : ImVec4(0.6f, 0.9f, 0.6f, 1.0f);
@@ -430,6 +436,7 @@ PanelActions draw_panel(PanelModel& m) {
   record_widget(m, "panel-end");
   const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
   m.widget_rects["panel"] = {pos.x, pos.y, pos.x + size.x, pos.y + size.y};
+  m.panel_width = size.x;  // the width the user dragged it to, for the next layout
   ImGui::End();
   return actions;
 }

@@ -32,6 +32,10 @@ struct ProbePoint {
   std::array<float, kPassCount + 1> luminance{};
 };
 
+/// The panel's width when it opens, in window pixels, and the range its right edge can be dragged over.
+inline constexpr float kPanelWidth = 340.0f;
+inline constexpr float kMinPanelWidth = 240.0f, kMaxPanelWidth = 720.0f;
+
 struct PanelModel {
   Settings settings;  ///< edited by the widgets
   bool paused = false;
@@ -64,6 +68,7 @@ struct PanelModel {
   /// Where some widgets were drawn last frame (x0, y0, x1, y1 in window pixels, y down), by name ("pass-l2",
   /// "weight-l1", ...): the window reports them so that tests can click them with synthetic input.
   std::map<std::string, std::array<float, 4>> widget_rects;
+  float panel_width = kPanelWidth;  ///< the panel's column, in window pixels
 };
 
 struct PanelActions {
@@ -91,10 +96,9 @@ void record_noise(PanelModel& model, const FilmNoise& noise, double seconds);
 /// Sets the panel's figures about the scene being traced: name, triangle and emitter counts, automatic AO radius.
 void describe_scene(PanelModel& model, const TracedScene& traced);
 
-/// Draws the panel as one ImGui window at the top-left of the display. Call between ImGui::NewFrame and Render.
-PanelActions draw_panel(PanelModel& model);
-
-/// The panel's width in pixels (for tests that look for it in a screenshot).
-inline constexpr float kPanelWidth = 340.0f;
+/// Draws the panel as one ImGui window: a column down the left of the display, `height` tall and
+/// `model.panel_width` wide (dragging its right edge changes that width). Opaque beside the image; translucent when
+/// `over_image` (a window too narrow for both). Call between ImGui::NewFrame and Render.
+PanelActions draw_panel(PanelModel& model, float height, bool over_image = false);
 
 }  // namespace lueur
