@@ -239,6 +239,26 @@ TEST_F(Window, TheImageSitsBesideThePanelWhichTabHidesAndItsEdgeWidens) {
       << state().dump();
 }
 
+TEST_F(Window, TheFieldOfViewSliderZoomsWithTheEyeKept) {
+  // A taller window, so that the View section's slider is on screen without scrolling the panel.
+  xdotool("windowsize " + window_ + " 852 1000");
+  ASSERT_TRUE(wait_for([](const json& s) {
+    return s["view"]["height"] == 1000 && s["widgets"].contains("field-of-view") &&
+           s["widgets"]["field-of-view"][3].get<float>() < 990.0f;
+  })) << state().dump();
+  const json before = state();
+  const float fovy = before["view"]["camera"]["fovy_degrees"].get<float>();
+  const auto [x, y] = centre_of("field-of-view");
+  press_and_drag(x, y, x + 40, y);
+  xdotool("mouseup 1");
+  ASSERT_TRUE(wait_for([&](const json& s) {
+    return s["view"]["camera"]["fovy_degrees"].get<float>() > fovy + 1.0f &&
+           s["generation"].get<uint64_t>() > before["generation"].get<uint64_t>();
+  })) << "dragging the field of view did not widen the view and restart: "
+      << state().dump();
+  EXPECT_EQ(state()["view"]["camera"]["eye"], before["view"]["camera"]["eye"]) << "a lens zoom keeps the eye";
+}
+
 TEST_F(Window, SurvivesATinyWindowAndBeingHidden) {
   // Shrunk to a single pixel, the render follows (and still traces).
   xdotool("windowsize " + window_ + " 1 1");

@@ -169,7 +169,16 @@ void sampling_section(PanelModel& m) {
   setting_tooltip("seed");
 }
 
-void view_section(Settings& v) {
+void view_section(PanelModel& m) {
+  Settings& v = m.settings;
+  if (v.camera) {
+    // Zoom as a lens does, the eye kept where it is (the wheel dollies instead); a change restarts the accumulation.
+    float& fovy = v.camera->fovy_degrees;
+    if (ImGui::SliderFloat("Field of view", &fovy, kMinPanelFieldOfView, kMaxPanelFieldOfView, "%.1f deg"))
+      fovy = std::clamp(fovy, kMinPanelFieldOfView, kMaxPanelFieldOfView);  // Ctrl+click can type anything
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("the camera's vertical field of view, in degrees");
+    record_widget(m, "field-of-view");
+  }
   // "combined" first, then every layer; the layers that explain reuse are report figures 7 and 8.
   // ... and last the noise view.
   constexpr int kNoiseEntry = kLayerCount + 1;
@@ -424,7 +433,7 @@ PanelActions draw_panel(PanelModel& m, float height, bool over_image) {
   }
   if (ImGui::CollapsingHeader("Passes", ImGuiTreeNodeFlags_DefaultOpen)) passes_section(m);
   if (ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) sampling_section(m);
-  if (ImGui::CollapsingHeader("View and display", ImGuiTreeNodeFlags_DefaultOpen)) view_section(m.settings);
+  if (ImGui::CollapsingHeader("View and display", ImGuiTreeNodeFlags_DefaultOpen)) view_section(m);
   if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) statistics_section(m);
   if (ImGui::CollapsingHeader("Pixel", ImGuiTreeNodeFlags_DefaultOpen)) pixel_section(m);
   if (ImGui::CollapsingHeader("Noise (estimated relMSE)", ImGuiTreeNodeFlags_DefaultOpen)) noise_section(m);

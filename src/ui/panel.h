@@ -35,6 +35,8 @@ struct ProbePoint {
 /// The panel's width when it opens, in window pixels, and the range its right edge can be dragged over.
 inline constexpr float kPanelWidth = 340.0f;
 inline constexpr float kMinPanelWidth = 240.0f, kMaxPanelWidth = 720.0f;
+/// The field-of-view slider's range, in degrees (the command line's --camera takes anything in (0, 180)).
+inline constexpr float kMinPanelFieldOfView = 1.0f, kMaxPanelFieldOfView = 150.0f;
 
 struct PanelModel {
   Settings settings;  ///< edited by the widgets
