@@ -109,6 +109,32 @@ TEST(SceneBudget, TooManyVerticesForTheBudgetIsRefusedAtTheLine) {
   }
 }
 
+TEST(SceneBudget, EmittersCountOnceTheMaterialsSayWhichTrianglesEmit) {
+  // The same grid twice: lit by its own material (every triangle an emitter) and not.
+  const std::string obj = "mtllib grid.mtl\nusemtl lamp\n" + grid_obj(60);  // 3600 vertices, 6962 triangles
+  const std::string lamp = "newmtl lamp\nKd 0.5 0.5 0.5\nKe 1 1 1\n", plain = "newmtl lamp\nKd 0.5 0.5 0.5\n";
+  const uint64_t geometry = scene_memory_bytes(obj.size(), 3600, 0, 0, 6962);
+  const uint64_t lights = emitter_memory_bytes(6962);
+  EXPECT_GT(lights, 6962u * 285u) << "below what light sampling was measured to take per emitter";
+  LoadOptions options;
+  // A budget that holds the geometry but not its emitters: the plain grid loads, the lit one is refused.
+  options.memory = MemoryBudget{geometry + lights / 2, "a test budget"};
+  EXPECT_LT(load_obj_from_text(obj, plain, "grid.obj", options).scene.emitters.size(), 100u)
+      << "only the default light rig's few";
+  try {
+    load_obj_from_text(obj, lamp, "grid.obj", options);
+    ADD_FAILURE() << "loaded a scene whose emitters go over its budget";
+  } catch (const SceneError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("grid.obj: scene too large: its 6962 emitting triangles (light sampling's", 0), 0u)
+        << message;
+    EXPECT_NE(message.find("available (a test budget)"), std::string::npos) << message;
+  }
+  options.memory = MemoryBudget{geometry + lights, "a test budget"};
+  EXPECT_EQ(load_obj_from_text(obj, lamp, "grid.obj", options).scene.emitters.size(), 6962u);
+  EXPECT_EQ(emitter_memory_bytes(std::numeric_limits<uint64_t>::max()), std::numeric_limits<uint64_t>::max());
+}
+
 TEST(SceneBudget, AFileLargerThanTheBudgetIsRefusedBeforeReading) {
   const std::string dir = test::make_temp_dir("limits-file");
   const std::string path = dir + "/big.obj";

@@ -43,6 +43,10 @@ struct LoadOptions {
 uint64_t scene_memory_bytes(uint64_t text_bytes, uint64_t vertices, uint64_t normals, uint64_t texcoords,
                             uint64_t triangles);
 
+/// Bytes that light sampling adds for a scene's emitting triangles (their records, clusters and trees), on top of
+/// scene_memory_bytes: known only once the materials say which triangles emit.
+uint64_t emitter_memory_bytes(uint64_t emitters);
+
 /// A loaded scene and what the loader repaired or guessed on the way (each a one-line message).
 struct LoadedScene {
   Scene scene;
