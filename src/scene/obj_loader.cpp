@@ -102,12 +102,16 @@ std::string scene_name_of(const std::string& path) {
 /// The scene's budget with its emitters counted (returned); refuses a scene whose emitters tip it over the budget.
 uint64_t add_emitters_to_budget(const Scene& scene, const std::string& label, uint64_t scene_bytes,
                                 const MemoryBudget& budget) {
-  const uint64_t emitter_bytes = emitter_memory_bytes(scene.emitters.size());
+  // The file's own emitters: the default light rig (a dozen triangles, added to a scene without any) costs nothing
+  // worth counting.
+  const auto own = static_cast<size_t>(std::count_if(scene.emitters.begin(), scene.emitters.end(),
+                                                     [&](uint32_t t) { return t < scene.rig_begin; }));
+  const uint64_t emitter_bytes = emitter_memory_bytes(own);
   uint64_t needed = 0;
   if (__builtin_add_overflow(scene_bytes, emitter_bytes, &needed)) needed = std::numeric_limits<uint64_t>::max();
   if (needed > budget.bytes)
     throw SceneError(label + ": " +
-                     obj::too_large("its " + obj::counted(scene.emitters.size(), "emitting triangle") +
+                     obj::too_large("its " + obj::counted(own, "emitting triangle") +
                                         " (light sampling's records and trees) and the rest of the scene need",
                                     needed, budget));
   return needed;
