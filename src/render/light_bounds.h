@@ -1,7 +1,7 @@
 // Bounds of a set of emitters (a sphere and a box around their triangles, a cone around their normals, the plane
 // they all face away from, their power) and the bound those give on what the set can send to a shaded point
 // (pbrt-v4's LightBounds::Importance, with Lueur's horizon and facing tests). Shared by the `importance` light
-// choice's clusters, weighed many at once, and the trees inside large clusters, weighed two at a time.
+// choice's clusters and the children of each node of the trees inside large clusters, each set weighed at once.
 // Depends on render/emitter.h only.
 #pragma once
 

@@ -2,6 +2,7 @@
 #include "render/light_clusters.h"
 
 #include <algorithm>
+#include <bit>
 #include <numeric>
 
 #include "render/light_bounds.h"
@@ -81,37 +82,64 @@ constexpr int kMaxMiddleSplitDepth = 40;
 /// The largest double below 1: a rescaled number stays in [0, 1).
 constexpr double kOneBelowOne = 1.0 - 0x1p-53;
 
-/// Fills tree node `node` over `order[begin, end)` and, below it, the nodes of its subtree: two children each, down
-/// to one emitter per leaf. A leaf holds its emitter's slot in `members`: `slot_base` plus its place in the cluster.
+/// Sets lane `lane` of a node's (or the clusters') bound arrays.
+template <typename Arrays>
+void set_lane(Arrays& a, size_t lane, const LightBounds& b) {
+  a.cx[lane] = b.cx, a.cy[lane] = b.cy, a.cz[lane] = b.cz, a.radius[lane] = b.radius;
+  a.ax[lane] = b.ax, a.ay[lane] = b.ay, a.az[lane] = b.az, a.cos_spread[lane] = b.cos_spread;
+  a.ex[lane] = b.ex, a.ey[lane] = b.ey, a.ez[lane] = b.ez;
+  a.lowest[lane] = b.lowest, a.tilt[lane] = b.tilt, a.power[lane] = b.power;
+}
+
+/// Fills tree node `node` over `order[begin, end)` (at least two emitters) and, below it, the nodes of its subtree:
+/// the range halved three times over (a part of one emitter stays whole), each part a child, down to one emitter per
+/// child. Such a child holds its emitter's slot in `members`: `slot_base` plus its place in the cluster.
 void build_tree(LightClusters& c, const std::vector<EmitterRecord>& records, const std::vector<double>& weights,
                 std::vector<uint32_t>& order, size_t cluster_begin, uint32_t slot_base, double power_scale,
                 uint32_t node, size_t begin, size_t end, int depth) {
-  c.tree[node].bounds = bound_emitters(records, weights, order.data() + begin, end - begin, power_scale);
-  if (end - begin == 1) {
-    c.tree[node].leaf = true;
-    c.tree[node].first = slot_base + static_cast<uint32_t>(begin - cluster_begin);
-    c.leaf_of[order[begin]] = node;
-    return;
+  std::vector<std::pair<size_t, size_t>> parts = {{begin, end}};
+  for (int round = 0; (size_t{2} << round) <= kLightTreeWidth; ++round) {
+    std::vector<std::pair<size_t, size_t>> halves;
+    for (const auto& [b, e] : parts) {
+      if (e - b == 1) {
+        halves.emplace_back(b, e);
+        continue;
+      }
+      const size_t cut = split(records, order, b, e, depth + round >= kMaxMiddleSplitDepth);
+      halves.emplace_back(b, cut);
+      halves.emplace_back(cut, e);
+    }
+    parts = std::move(halves);
   }
-  const size_t cut = split(records, order, begin, end, depth >= kMaxMiddleSplitDepth);
-  const auto left = static_cast<uint32_t>(c.tree.size());
-  c.tree.resize(c.tree.size() + 2);
-  c.parent.resize(c.tree.size(), node);
-  c.tree[node].first = left;
-  build_tree(c, records, weights, order, cluster_begin, slot_base, power_scale, left, begin, cut, depth + 1);
-  build_tree(c, records, weights, order, cluster_begin, slot_base, power_scale, left + 1, cut, end, depth + 1);
+  // Every part's bounds first: building a child's subtree reorders its part (not its bounds, but its sums' order).
+  for (size_t lane = 0; lane < parts.size(); ++lane) {
+    const auto [b, e] = parts[lane];
+    set_lane(c.tree[node], lane, bound_emitters(records, weights, order.data() + b, e - b, power_scale));
+  }
+  c.tree[node].count = static_cast<uint32_t>(parts.size());
+  for (size_t lane = 0; lane < parts.size(); ++lane) {
+    const auto [b, e] = parts[lane];
+    const auto place = static_cast<uint32_t>(node * kLightTreeWidth + lane);
+    if (e - b == 1) {
+      c.tree[node].child[lane] = kLeafChild | (slot_base + static_cast<uint32_t>(b - cluster_begin));
+      c.leaf_of[order[b]] = place;
+      continue;
+    }
+    const auto child = static_cast<uint32_t>(c.tree.size());
+    c.tree.emplace_back();
+    c.parent.push_back(place);
+    c.tree[node].child[lane] = child;
+    build_tree(c, records, weights, order, cluster_begin, slot_base, power_scale, child, b, e,
+               depth + static_cast<int>(std::countr_zero(kLightTreeWidth)));
+  }
 }
 
 /// Appends the cluster holding `order[r.begin, r.end)`: its bounds and members, and, when it holds more than
 /// kMaxMembersByPower emitters, the tree that chooses among them (which reorders the range).
 void add_cluster(LightClusters& c, const std::vector<EmitterRecord>& records, const std::vector<double>& weights,
                  std::vector<uint32_t>& order, const Range& r, double power_scale) {
-  const LightBounds b = bound_emitters(records, weights, order.data() + r.begin, r.end - r.begin, power_scale);
   const size_t cluster = c.count++;
-  c.cx[cluster] = b.cx, c.cy[cluster] = b.cy, c.cz[cluster] = b.cz, c.radius[cluster] = b.radius;
-  c.ax[cluster] = b.ax, c.ay[cluster] = b.ay, c.az[cluster] = b.az, c.cos_spread[cluster] = b.cos_spread;
-  c.ex[cluster] = b.ex, c.ey[cluster] = b.ey, c.ez[cluster] = b.ez;
-  c.lowest[cluster] = b.lowest, c.tilt[cluster] = b.tilt, c.power[cluster] = b.power;
+  set_lane(c, cluster, bound_emitters(records, weights, order.data() + r.begin, r.end - r.begin, power_scale));
   const auto slot_base = static_cast<uint32_t>(c.members.size());
   c.first.push_back(slot_base);
   if (r.end - r.begin > kMaxMembersByPower) {
@@ -130,17 +158,6 @@ void add_cluster(LightClusters& c, const std::vector<EmitterRecord>& records, co
     c.cluster_of[i] = static_cast<uint32_t>(cluster);
     c.share[i] = static_cast<float>(weights[i] / r.power);
   }
-}
-
-/// The probability of descending from a tree node to its first child, `left` (the second is left + 1): their
-/// weights' share, or their powers' where the weights pass a float's range. Negative when neither weighs anything.
-float left_probability(const LightClusters& c, const ImportanceQuery& q, uint32_t left) {
-  const LightBounds& a = c.tree[left].bounds;
-  const LightBounds& b = c.tree[left + 1].bounds;
-  const float wa = light_importance(q, a), wb = light_importance(q, b);
-  const float sum = wa + wb;
-  if (std::isfinite(sum)) return sum > 0.0f ? wa / sum : -1.0f;
-  return a.power + b.power > 0.0f ? a.power / (a.power + b.power) : 0.5f;
 }
 
 }  // namespace
@@ -180,19 +197,24 @@ LightClusters build_light_clusters(const std::vector<EmitterRecord>& records) {
   return clusters;
 }
 
-/// Weighs clusters [0, kLanes) (kLanes a multiple of four at least the count: a fixed trip count, which the compiler
-/// weighs four at a time).
-template <size_t kLanes>
-void weigh_lanes(const LightClusters& c, const ImportanceQuery& q, LightWeights& weights) {
-  LightClusters::PerCluster out{};
+/// Weighs lanes [0, kLanes) of a set of bound arrays (the clusters', or a tree node's children's) at the point.
+/// kLanes is a multiple of four: a fixed trip count without branches, which the compiler weighs four at a time.
+template <size_t kLanes, typename Arrays>
+void weigh_lanes(const Arrays& a, const ImportanceQuery& q, float* __restrict out) {
   for (size_t k = 0; k < kLanes; ++k) {
     LightBounds b;
-    b.cx = c.cx[k], b.cy = c.cy[k], b.cz = c.cz[k], b.radius = c.radius[k];
-    b.ax = c.ax[k], b.ay = c.ay[k], b.az = c.az[k], b.cos_spread = c.cos_spread[k];
-    b.ex = c.ex[k], b.ey = c.ey[k], b.ez = c.ez[k];
-    b.lowest = c.lowest[k], b.tilt = c.tilt[k], b.power = c.power[k];
+    b.cx = a.cx[k], b.cy = a.cy[k], b.cz = a.cz[k], b.radius = a.radius[k];
+    b.ax = a.ax[k], b.ay = a.ay[k], b.az = a.az[k], b.cos_spread = a.cos_spread[k];
+    b.ex = a.ex[k], b.ey = a.ey[k], b.ez = a.ez[k];
+    b.lowest = a.lowest[k], b.tilt = a.tilt[k], b.power = a.power[k];
     out[k] = light_importance(q, b);
   }
+}
+
+template <size_t kLanes>
+void weigh_clusters(const LightClusters& c, const ImportanceQuery& q, LightWeights& weights) {
+  LightClusters::PerCluster out{};
+  weigh_lanes<kLanes>(c, q, out.data());
   weights.weight = out;
   float running = 0.0f;
   for (size_t k = 0; k < kLanes; ++k) weights.cdf[k] = running += weights.weight[k];
@@ -206,32 +228,54 @@ void weigh_light_clusters(const LightClusters& c, const Vec3& position, const Ve
   weights.position = position, weights.normal = normal;
   // Copies, so that the compiler need not fear that writing the weights changes them.
   const ImportanceQuery q(position, normal);
-  if (c.count <= 4) return weigh_lanes<4>(c, q, weights);
-  if (c.count <= 8) return weigh_lanes<8>(c, q, weights);
-  weigh_lanes<16>(c, q, weights);
+  if (c.count <= 4) return weigh_clusters<4>(c, q, weights);
+  if (c.count <= 8) return weigh_clusters<8>(c, q, weights);
+  weigh_clusters<16>(c, q, weights);
 }
 
 namespace {
 
-/// The member of cluster k (which has a tree) for v in [0, 1]: down from the root, a child by its share of the two
-/// children's weights at the point, with v rescaled inside that share.
+/// A tree node's children weighed at the point, as running sums (the last is the total); their powers where the
+/// weights pass a float's range. False when none weighs anything: no emitter below the node can light the point.
+bool weigh_children(const LightTreeNode& n, const ImportanceQuery& q, std::array<float, kLightTreeWidth>& cdf) {
+  std::array<float, kLightTreeWidth> weight;
+  weigh_lanes<kLightTreeWidth>(n, q, weight.data());
+  float running = 0.0f;
+  for (size_t k = 0; k < kLightTreeWidth; ++k) cdf[k] = running += weight[k];
+  if (!std::isfinite(running)) {
+    running = 0.0f;
+    for (size_t k = 0; k < kLightTreeWidth; ++k) cdf[k] = running += n.power[k];
+  }
+  return running > 0.0f;
+}
+
+/// The lane of running weights `cdf` (of `count` lanes) that x falls in: the first whose running weight exceeds x,
+/// the last that weighs anything if none does (x rounded up to the total); counted without a branch on x.
+size_t lane_of(const float* cdf, size_t count, double x) {
+  size_t k = 0;
+  for (size_t i = 0; i + 1 < kLightTreeWidth; ++i) k += static_cast<size_t>((i + 1 < count) & !(cdf[i] > x));
+  while (k > 0 && !(cdf[k] > cdf[k - 1])) --k;
+  return k;
+}
+
+/// The member of cluster k (which has a tree) for v in [0, 1]: down from the root, a child by its share of its
+/// node's children's weights at the point, with v rescaled inside that share.
 LightChoice choose_in_tree(const LightClusters& c, const LightWeights& weights, size_t k, double v) {
   const ImportanceQuery q(weights.position, weights.normal);
   float pmf = weights.weight[k] / weights.total;
   uint32_t node = c.root[k];
-  v = std::min(v, kOneBelowOne);  // so that a child of probability 1 is always the one taken
-  while (!c.tree[node].leaf) {
-    const uint32_t left = c.tree[node].first;
-    const float p_left = left_probability(c, q, left);
-    if (p_left < 0.0f) return LightChoice{};  // neither child can light the point: no shadow ray
-    if (v < p_left) {
-      v /= p_left, node = left, pmf *= p_left;
-    } else {
-      v = (v - p_left) / (1.0 - p_left), node = left + 1, pmf *= 1.0f - p_left;
-    }
-    v = std::min(v, kOneBelowOne);
+  std::array<float, kLightTreeWidth> cdf;
+  for (;;) {
+    const LightTreeNode& n = c.tree[node];
+    if (!weigh_children(n, q, cdf)) return LightChoice{};  // no child can light the point: no shadow ray
+    const float total = cdf[kLightTreeWidth - 1];
+    const size_t lane = lane_of(cdf.data(), n.count, v * total);
+    const float below = lane > 0 ? cdf[lane - 1] : 0.0f, weight = cdf[lane] - below;
+    pmf *= weight / total;
+    v = std::clamp((v * total - below) / weight, 0.0, kOneBelowOne);
+    if (n.child[lane] & kLeafChild) return LightChoice{c.members[n.child[lane] & ~kLeafChild], pmf};
+    node = n.child[lane];
   }
-  return LightChoice{c.members[c.tree[node].first], pmf};
 }
 
 }  // namespace
@@ -271,16 +315,18 @@ float weighted_light_pmf(const LightClusters& c, const LightWeights& weights, ui
   if (!(weights.total > 0.0f)) return 0.0f;
   const uint32_t k = c.cluster_of[index];
   if (c.root[k] == kNoTreeNode) return weights.weight[k] / weights.total * c.share[index];
-  // The path from the root to the emitter's leaf, then the same products as choose_in_tree, in the same order.
-  std::vector<uint32_t> path;
-  for (uint32_t node = c.leaf_of[index]; node != kNoTreeNode; node = c.parent[node]) path.push_back(node);
+  // The path from the root to the emitter, then the same products as choose_in_tree, in the same order.
+  std::vector<uint32_t> path;  // node x kLightTreeWidth + lane, from the emitter up
+  for (uint32_t place = c.leaf_of[index]; place != kNoTreeNode; place = c.parent[place / kLightTreeWidth])
+    path.push_back(place);
   const ImportanceQuery q(weights.position, weights.normal);
   float pmf = weights.weight[k] / weights.total;
-  for (size_t i = path.size() - 1; i > 0; --i) {
-    const uint32_t left = c.tree[path[i]].first;
-    const float p_left = left_probability(c, q, left);
-    if (p_left < 0.0f) return 0.0f;
-    pmf *= path[i - 1] == left ? p_left : 1.0f - p_left;
+  std::array<float, kLightTreeWidth> cdf;
+  for (size_t i = path.size(); i-- > 0;) {
+    const size_t lane = path[i] % kLightTreeWidth;
+    if (!weigh_children(c.tree[path[i] / kLightTreeWidth], q, cdf)) return 0.0f;
+    const float below = lane > 0 ? cdf[lane - 1] : 0.0f, weight = cdf[lane] - below;
+    pmf *= weight / cdf[kLightTreeWidth - 1];
   }
   return pmf;
 }

@@ -26,13 +26,26 @@ inline constexpr size_t kMaxLightClusters = 16;
 inline constexpr size_t kMaxMembersByPower = 16;
 inline constexpr uint32_t kNoTreeNode = 0xffffffffu;
 
-/// A node of a tree over a large cluster's emitters: two children (`first` and `first + 1` in the tree's array), or,
-/// at a leaf, one emitter (`first` is its slot in `members`).
-struct LightTreeNode {
-  LightBounds bounds;
-  uint32_t first = 0;
-  bool leaf = false;
+/// Children of a tree node, weighed at a point all at once (like the clusters): a node halves its emitters three
+/// times over.
+inline constexpr size_t kLightTreeWidth = 8;
+/// Marks a node's child that is one emitter (the rest of the number is its slot in `members`), not another node.
+inline constexpr uint32_t kLeafChild = 0x80000000u;
+
+/// A node of a tree over a large cluster's emitters: up to kLightTreeWidth children, each another node or one
+/// emitter, with their bounds in one array per field (as the clusters keep theirs). Lanes past `count` weigh nothing.
+struct alignas(32) LightTreeNode {
+  using PerChild = std::array<float, kLightTreeWidth>;
+  PerChild cx{}, cy{}, cz{};
+  PerChild radius{1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f};  ///< positive in unused lanes too
+  PerChild ax{}, ay{}, az{};
+  PerChild cos_spread{-1.0f, -1.0f, -1.0f, -1.0f, -1.0f, -1.0f, -1.0f, -1.0f};
+  PerChild ex{}, ey{}, ez{};
+  PerChild lowest{}, tilt{}, power{};
+  std::array<uint32_t, kLightTreeWidth> child{};  ///< a node's index in `tree`, or kLeafChild | a slot in `members`
+  uint32_t count = 0;
 };
+static_assert(kLightTreeWidth == 8, "LightTreeNode's initialisers hold eight lanes");
 
 struct LightClusters {
   /// Per cluster, in fixed arrays so that weighing them all at a point is one loop of known length without branches
@@ -52,12 +65,14 @@ struct LightClusters {
   std::vector<double> member_cdf;    ///< per member: running power within its cluster
   std::vector<uint32_t> cluster_of;  ///< per light-table index: its cluster
   std::vector<float> share;          ///< per light-table index: its power / its cluster's power
-  /// Clusters of more than kMaxMembersByPower emitters choose one by descending a binary tree over them, weighing
-  /// two children at a time at the point (pbrt-v4's light BVH below the cut).
+  /// Clusters of more than kMaxMembersByPower emitters choose one by descending a tree over them, weighing a node's
+  /// children at the point (pbrt-v4's light BVH below the cut, eight children a node instead of two).
   std::array<uint32_t, kMaxLightClusters> root;  ///< per cluster: its tree's root, or kNoTreeNode
   std::vector<LightTreeNode> tree;               ///< every cluster's tree nodes
-  std::vector<uint32_t> parent;                  ///< per tree node: its parent, or kNoTreeNode at a root
-  std::vector<uint32_t> leaf_of;                 ///< per light-table index: its leaf, or kNoTreeNode outside trees
+  /// Where each node and each emitter of a tree hangs: node x kLightTreeWidth + lane of its parent's child, or
+  /// kNoTreeNode (a root; an emitter outside the trees).
+  std::vector<uint32_t> parent;   ///< per tree node
+  std::vector<uint32_t> leaf_of;  ///< per light-table index
   LightClusters() { root.fill(kNoTreeNode); }
   size_t size() const { return count; }
 };
