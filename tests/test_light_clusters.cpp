@@ -3,11 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cstring>
 #include <vector>
 
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "render/direct_light.h"
+#include "render/light_lanes.h"
 #include "render/light_sampler.h"
 #include "scene/default_scene.h"
 #include "test_support.h"
@@ -280,6 +283,28 @@ TEST(LightClusters, TreeChoicesComeAsOftenAsTheirPmfSays) {
     EXPECT_GT(dof, 50);
     EXPECT_FALSE(test::chi_square_rejects(chi2, dof)) << chi2 << " for " << dof << " at " << position.y;
   }
+}
+
+// The AVX2 build of a tree node's weighing gives the baseline build's bits: the image must not depend on the CPU.
+// Points near, among and far from the emitters, against every node.
+TEST(LightClusters, TreeNodesWeighTheSameBitsWithAvx2AsWithout) {
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "this CPU has no AVX2: only the baseline build runs here";
+  const LightClusters c = build_light_clusters(random_emitters(400, 7));
+  ASSERT_FALSE(c.tree.empty());
+  Pcg32 rng(3, 4);
+  int lanes = 0, positive = 0;
+  for (int point = 0; point < 400; ++point) {
+    const ImportanceQuery q(random_direction(rng) * (0.05f + 3.0f * rng.next_float()), random_direction(rng));
+    for (const LightTreeNode& node : c.tree) {
+      std::array<float, kLightTreeWidth> baseline, avx2;
+      weigh_tree_children_baseline(node, q, baseline.data());
+      weigh_tree_children_avx2(node, q, avx2.data());
+      ASSERT_EQ(std::memcmp(baseline.data(), avx2.data(), sizeof baseline), 0) << "at point " << point;
+      for (const float w : baseline) positive += w > 0.0f;
+      lanes += static_cast<int>(kLightTreeWidth);
+    }
+  }
+  EXPECT_GT(positive, lanes / 10) << "the weights compared are mostly zero";
 }
 
 // Weights past a float's range (a point a hair from a speck of an emitter) say so, and L1 then chooses by power;
