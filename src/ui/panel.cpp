@@ -383,6 +383,34 @@ void files_section(PanelModel& m, PanelActions& actions) {
   if (ImGui::Button("Load view")) actions.load_view = true;
 }
 
+/// What the mouse and the keys do in the window (the README's list), for a user who has not read it.
+void keys_section() {
+  static const char* const kLines[][2] = {
+      {"left drag", "orbit"},
+      {"middle drag, Shift + left drag", "pan"},
+      {"wheel", "dolly"},
+      {"W A S D, Q E", "fly (forward, left, back, right, down, up)"},
+      {"F", "frame the scene"},
+      {"R", "back to the first view"},
+      {"I, O", "inside, outside a closed room"},
+      {"F5", "read the scene again from its files"},
+      {"right click", "pin the inspected pixel (again: let it go)"},
+      {"Tab", "hide or show this panel"},
+      {"drop a file", "an OBJ opens it, a view .json applies it"},
+  };
+  if (!ImGui::BeginTable("keys", 2, ImGuiTableFlags_SizingStretchProp)) return;
+  for (const auto& [keys, action] : kLines) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::TextWrapped("%s", keys);
+    ImGui::TableNextColumn();
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("%s", action);
+    ImGui::PopStyleColor();
+  }
+  ImGui::EndTable();
+}
+
 }  // namespace
 
 void record_noise(PanelModel& model, const FilmNoise& noise, double seconds) {
@@ -423,7 +451,7 @@ PanelActions draw_panel(PanelModel& m, float height, bool over_image) {
     return actions;
   }
   ImGui::PushItemWidth(-ImGui::GetFontSize() * 9.0f);  // leave room for the labels on the right
-  ImGui::TextDisabled("Tab hides this panel");
+  ImGui::TextDisabled("Tab hides the panel; keys: last section");
   if (!m.status.empty()) ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.3f, 1.0f), "%s", m.status.c_str());
   if (!m.message.empty()) {
     const ImVec4 colour = m.message_is_error ? ImVec4(1.0f, 0.35f, 0.3f, 1.0f) : ImVec4(0.6f, 0.9f, 0.6f, 1.0f);
@@ -441,6 +469,7 @@ PanelActions draw_panel(PanelModel& m, float height, bool over_image) {
     compare_section(m);
   if (ImGui::CollapsingHeader("Control", ImGuiTreeNodeFlags_DefaultOpen)) control_section(m, actions);
   if (ImGui::CollapsingHeader("Files", ImGuiTreeNodeFlags_DefaultOpen)) files_section(m, actions);
+  if (ImGui::CollapsingHeader("Mouse and keys")) keys_section();
   ImGui::PopItemWidth();
   record_widget(m, "panel-end");
   const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
