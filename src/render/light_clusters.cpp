@@ -250,13 +250,25 @@ bool weigh_children(const LightTreeNode& n, const ImportanceQuery& q, std::array
   return running > 0.0f;
 }
 
-/// The lane of running weights `cdf` (of `count` lanes) that x falls in: the first whose running weight exceeds x,
-/// the last that weighs anything if none does (x rounded up to the total); counted without a branch on x.
-size_t lane_of(const float* cdf, size_t count, double x) {
+/// The entry of running weights `cdf` (`count` in use of an array of kWidth) that x falls in: the first whose running
+/// weight exceeds x, the last if none does. Found without a branch on x: the running weights never fall, so the
+/// entries before it are exactly those at or below x. Branches on a random x missed about once per choice, which
+/// made the clusters' choice 5% of a frame.
+template <size_t kWidth, typename Number>
+size_t entry_of(const float* cdf, size_t count, Number x) {
   size_t k = 0;
-  for (size_t i = 0; i + 1 < kLightTreeWidth; ++i) k += static_cast<size_t>((i + 1 < count) & !(cdf[i] > x));
-  while (k > 0 && !(cdf[k] > cdf[k - 1])) --k;
+  for (size_t i = 0; i + 1 < kWidth; ++i) k += static_cast<size_t>((i + 1 < count) & !(cdf[i] > x));
   return k;
+}
+
+/// A node's child `lane` as its running weights `cdf` give it: the weight below it and its own. The descent and
+/// weighted_light_pmf both take a child's share from here, so that their products agree to the bit.
+struct LaneShare {
+  float below, weight;
+};
+LaneShare share_of(const std::array<float, kLightTreeWidth>& cdf, size_t lane) {
+  const float below = lane > 0 ? cdf[lane - 1] : 0.0f;
+  return {below, cdf[lane] - below};
 }
 
 /// The member of cluster k (which has a tree) for v in [0, 1]: down from the root, a child by its share of its
@@ -270,8 +282,9 @@ LightChoice choose_in_tree(const LightClusters& c, const LightWeights& weights, 
     const LightTreeNode& n = c.tree[node];
     if (!weigh_children(n, q, cdf)) return LightChoice{};  // no child can light the point: no shadow ray
     const float total = cdf[kLightTreeWidth - 1];
-    const size_t lane = lane_of(cdf.data(), n.count, v * total);
-    const float below = lane > 0 ? cdf[lane - 1] : 0.0f, weight = cdf[lane] - below;
+    size_t lane = entry_of<kLightTreeWidth>(cdf.data(), n.count, v * total);
+    while (lane > 0 && !(cdf[lane] > cdf[lane - 1])) --lane;  // x rounded up to the total: the last that weighs
+    const auto [below, weight] = share_of(cdf, lane);
     pmf *= weight / total;
     v = std::clamp((v * total - below) / weight, 0.0, kOneBelowOne);
     if (n.child[lane] & kLeafChild) return LightChoice{c.members[n.child[lane] & ~kLeafChild], pmf};
@@ -286,11 +299,7 @@ LightChoice choose_weighted_light(const LightClusters& c, const LightWeights& we
   if (!(weights.total > 0.0f)) return choice;
   const size_t n = c.size();
   const float x = u * weights.total;
-  // The first cluster whose running weight exceeds x (the last if none does), found without a branch: the running
-  // weights never fall, so the clusters before it are exactly those at or below x. Branches on a random x missed
-  // about once per choice, which made the choice 5% of a frame.
-  size_t k = 0;
-  for (size_t i = 0; i + 1 < kMaxLightClusters; ++i) k += static_cast<size_t>((i + 1 < n) & !(weights.cdf[i] > x));
+  size_t k = entry_of<kMaxLightClusters>(weights.cdf.data(), n, x);
   while (!(weights.weight[k] > 0.0f)) --k;  // x rounded up to the total: the last cluster that weighs anything
   const float below = weights.cdf[k] - weights.weight[k];
   const double v = std::clamp(static_cast<double>((x - below) / weights.weight[k]), 0.0, 1.0);
@@ -324,10 +333,8 @@ float weighted_light_pmf(const LightClusters& c, const LightWeights& weights, ui
   float pmf = weights.weight[k] / weights.total;
   std::array<float, kLightTreeWidth> cdf;
   for (size_t i = path.size(); i-- > 0;) {
-    const size_t lane = path[i] % kLightTreeWidth;
     if (!weigh_children(c.tree[path[i] / kLightTreeWidth], q, cdf)) return 0.0f;
-    const float below = lane > 0 ? cdf[lane - 1] : 0.0f, weight = cdf[lane] - below;
-    pmf *= weight / cdf[kLightTreeWidth - 1];
+    pmf *= share_of(cdf, path[i] % kLightTreeWidth).weight / cdf[kLightTreeWidth - 1];
   }
   return pmf;
 }
