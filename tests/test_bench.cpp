@@ -2,8 +2,11 @@
 // one-line error with exit status 2. The figures themselves are not tested (they depend on the machine).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <string>
+#include <utility>
 
 #include "accel/embree_backend.h"
 #include "bench/bench_throughput.h"
@@ -111,6 +114,21 @@ TEST(Bench, StoreSectionRacesTheReuseModesAgainstAnUnbiasedReference) {
     }
   }
   EXPECT_EQ(modes, (std::set<std::string>{"off", "frame", "cache", "screen+cache"}));
+}
+
+TEST(Bench, StoreSectionTakesTheStoresCellSize) {
+  // The smoke run's 16-pixel images: automatic cells of 2 x sqrt(16 / 128) pixels, or the size asked for.
+  for (const auto& [arguments, expected] :
+       {std::pair<std::string, double>{"--sections store", 2.0 * std::sqrt(16.0 / 128.0)},
+        {"--sections store --store-cell-pixels 8", 8.0}}) {
+    const nlohmann::json j = smoke_run_json(arguments);
+    for (const auto& e : j["store"]) {
+      if (e["reuse"] == "cache" || e["reuse"] == "screen+cache")
+        EXPECT_NEAR(e["cache_cell_pixels"].get<double>(), expected, 1e-5) << arguments;
+      else
+        EXPECT_TRUE(e["cache_cell_pixels"].is_null()) << arguments;
+    }
+  }
 }
 
 TEST(Bench, TraversalSectionCountsLueursWorkPerRay) {

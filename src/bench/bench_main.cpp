@@ -56,6 +56,7 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
   int reference_frames = 0, convergence_size = 0;
   double convergence_seconds = 0.0, store_seconds = 0.0, store_reference_seconds = 0.0, store_turn_seconds = 0.0;
   int store_size = 0;
+  float store_cell_pixels = -1.0f;
   app.add_flag("--quick", o.quick, "a reduced set that runs in under a minute");
   app.add_flag("--smoke", o.smoke, "a tiny run that only checks the plumbing (seconds; for the test suite)");
   app.add_option("--json", o.json_path, "write every figure to FILE as JSON")->type_name("FILE");
@@ -84,6 +85,10 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
   app.add_option("--store-size", store_size, "image side in pixels in section store (default 256)")
       ->type_name("PIXELS")
       ->check(checked_by(whole_number_error, {8, 8192}));
+  app.add_option("--store-cell-pixels", store_cell_pixels,
+                 "the L1 store's cell size in section store, as --cache-cell-pixels (default 0: automatic)")
+      ->type_name("X")
+      ->check(checked_by(finite_number_error, {0.0, 1024.0}));
   app.add_option("--reference-frames", reference_frames, "frames of each convergence reference (default 128)")
       ->type_name("N")
       ->check(checked_by(whole_number_error, {1, 100000}));
@@ -137,6 +142,7 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
   if (store_reference_seconds > 0.0) o.store.reference_seconds = store_reference_seconds;
   if (store_size > 0) o.store.size = store_size;
   if (store_turn_seconds > 0.0) o.store.turn_seconds = store_turn_seconds;
+  if (store_cell_pixels >= 0.0f) o.store.cell_pixels = store_cell_pixels;
   if (!o.json_path.empty()) {
     std::filesystem::path dir = std::filesystem::path(o.json_path).parent_path();
     if (dir.empty()) dir = ".";

@@ -125,6 +125,7 @@ Json run_store_comparison(std::vector<BenchScene>& scenes, const StoreOptions& o
       RenderSettings s = base;
       s.reuse = mode;
       s.seed = 1;
+      s.cache_cell_pixels = o.cell_pixels;
       settings.push_back(s);
     }
     const std::vector<Run> runs =
@@ -135,6 +136,7 @@ Json run_store_comparison(std::vector<BenchScene>& scenes, const StoreOptions& o
       const Point& end = r.curve.back();
       const std::optional<double> reach = time_to_reach(r.curve, frame_l2);
       const std::string mode(kReuseModeNames[static_cast<size_t>(modes[m])]);
+      const Json cell_pixels = uses_cache(modes[m]) ? Json(settings[m].cache_cell_pixels_in_use()) : Json(nullptr);
       results.push_back(Json{{"scene", b.name},
                              {"size", o.size},
                              {"reuse", mode},
@@ -145,6 +147,7 @@ Json run_store_comparison(std::vector<BenchScene>& scenes, const StoreOptions& o
                              {"image_relmse", end.image_relmse},
                              {"seconds_to_frame_l2_rmse", reach ? Json(*reach) : Json(nullptr)},
                              {"reference_frames", reference.film.frames},
+                             {"cache_cell_pixels", cell_pixels},
                              {"cache_cells", r.store.cells},
                              {"cache_full", r.store.full},
                              {"share_from_screen", share(r.from_screen, r.bounce_hits)},

@@ -18,6 +18,7 @@ struct StoreOptions {
   double reference_seconds = 240.0;  ///< the reference (`off`, another seed) renders at least this long
   double turn_seconds = 2.0;         ///< the modes take turns of this long (each on its own frames' clock)
   int threads = 0;                   ///< 0: all
+  float cell_pixels = 0.0f;          ///< the store modes' --cache-cell-pixels (0: automatic, the renderer's default)
 };
 
 /// One JSON object per scene and mode. Progress goes to `log`.
