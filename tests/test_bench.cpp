@@ -176,7 +176,8 @@ TEST(Bench, FrameSectionCountsTheRenderersRaysByQuery) {
 }
 
 TEST(Bench, BadInputIsOneLineAndStatusTwo) {
-  for (const std::string args : {"--no-such-option", "--sections build,nonsense", "--json /no/such/dir/b.json"}) {
+  for (const std::string args : {"--no-such-option", "--sections build,nonsense", "--json /no/such/dir/b.json",
+                                 "--store-cell-pixels -1", "--store-conference-light sky"}) {
     const test::CommandResult r = run_bench(args);
     EXPECT_EQ(r.exit_code, 2) << args;
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << ": " << r.output;

@@ -57,6 +57,7 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
   double convergence_seconds = 0.0, store_seconds = 0.0, store_reference_seconds = 0.0, store_turn_seconds = 0.0;
   int store_size = 0;
   float store_cell_pixels = -1.0f;
+  std::string store_conference_light;
   app.add_flag("--quick", o.quick, "a reduced set that runs in under a minute");
   app.add_flag("--smoke", o.smoke, "a tiny run that only checks the plumbing (seconds; for the test suite)");
   app.add_option("--json", o.json_path, "write every figure to FILE as JSON")->type_name("FILE");
@@ -89,6 +90,11 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
                  "the L1 store's cell size in section store, as --cache-cell-pixels (default 0: automatic)")
       ->type_name("X")
       ->check(checked_by(finite_number_error, {0.0, 1024.0}));
+  app.add_option("--store-conference-light", store_conference_light,
+                 "the conference room's light in section store: bench (the benchmark's small ceiling light, the "
+                 "default) or rig (the panel of Lueur's default light rig, as the viewer lights the room)")
+      ->type_name("bench|rig")
+      ->check(CLI::IsMember({"bench", "rig"}));
   app.add_option("--reference-frames", reference_frames, "frames of each convergence reference (default 128)")
       ->type_name("N")
       ->check(checked_by(whole_number_error, {1, 100000}));
@@ -143,6 +149,7 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
   if (store_size > 0) o.store.size = store_size;
   if (store_turn_seconds > 0.0) o.store.turn_seconds = store_turn_seconds;
   if (store_cell_pixels >= 0.0f) o.store.cell_pixels = store_cell_pixels;
+  o.store.conference_rig = store_conference_light == "rig";
   if (!o.json_path.empty()) {
     std::filesystem::path dir = std::filesystem::path(o.json_path).parent_path();
     if (dir.empty()) dir = ".";

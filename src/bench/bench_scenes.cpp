@@ -72,10 +72,11 @@ BenchScene from_file(const std::string& name, const std::string& path, bool insi
   b.name = name;
   b.scene = load_obj(path).scene;
   b.scene.name = name;
+  b.path = path;
   if (inside) {
-    // A file without emitters comes with the loader's default light, above the roof: left in, it would stretch
-    // the room's box upward and put the camera and the light above the roof, where primary rays see the roof
-    // from outside and shadow and bounce rays leave into empty space.
+    // The benchmark's own small ceiling light replaces whatever the loader added (today the rig's panel under the
+    // ceiling; when this scene was first measured, a light above the roof), so that its figures compare across
+    // sessions. The store section can race the room under the rig's panel instead (--store-conference-light rig).
     drop_emitters(b.scene);
     const Box3 box = b.scene.bounds();
     // From a third of the way along the room (the conference room's end is walled off behind a pillar), at 60% of

@@ -16,6 +16,7 @@ struct BenchScene {
   Scene scene;
   CameraSpec view;
   std::vector<uint32_t> lights;  ///< emitter triangles the shadow rays aim at (uniform by area)
+  std::string path;              ///< the OBJ file it was read from; empty for a built-in scene
 };
 
 /// A field of `spheres` random UV spheres (64 x 32, 3,968 triangles each) over a ground quad, lit from above,

@@ -13,6 +13,7 @@
 
 #include "bench/bench_convergence.h"
 #include "render/renderer.h"
+#include "scene/obj_loader.h"
 
 namespace lueur::bench {
 namespace {
@@ -103,7 +104,10 @@ Json run_store_comparison(std::vector<BenchScene>& scenes, const StoreOptions& o
   ThreadPool pool(o.threads);
   for (BenchScene& b : scenes) {
     if (b.name != "default" && b.name != "conference") continue;
-    const auto traced = prepare_scene(b.scene);
+    // Under the rig's panel the room is lit as the viewer lights it; the scene is read again, with the rig.
+    const bool rig = o.conference_rig && b.name == "conference";
+    const auto traced = prepare_scene(rig ? load_obj(b.path).scene : b.scene);
+    const std::string light = b.name != "conference" ? "" : rig ? "rig" : "bench";
     const Camera camera = make_camera(b.view, o.size, o.size);
     RenderSettings base;
     base.width = base.height = o.size;
@@ -116,8 +120,9 @@ Json run_store_comparison(std::vector<BenchScene>& scenes, const StoreOptions& o
             .front();
     const Image l2_reference = layer_average(reference.film, Layer::kL2);
     const Image image_reference = image_of(reference.film, reference_settings);
-    std::fprintf(log, "lueur-bench: store %s: reference (reuse off) %llu frames in %.1f s\n", b.name.c_str(),
-                 static_cast<unsigned long long>(reference.film.frames), reference.curve.back().seconds);
+    std::fprintf(log, "lueur-bench: store %s%s: reference (reuse off) %llu frames in %.1f s\n", b.name.c_str(),
+                 rig ? " under the rig's panel" : "", static_cast<unsigned long long>(reference.film.frames),
+                 reference.curve.back().seconds);
 
     const ReuseMode modes[] = {ReuseMode::kOff, ReuseMode::kFrame, ReuseMode::kCache, ReuseMode::kScreenCache};
     std::vector<RenderSettings> settings;
@@ -138,6 +143,7 @@ Json run_store_comparison(std::vector<BenchScene>& scenes, const StoreOptions& o
       const std::string mode(kReuseModeNames[static_cast<size_t>(modes[m])]);
       const Json cell_pixels = uses_cache(modes[m]) ? Json(settings[m].cache_cell_pixels_in_use()) : Json(nullptr);
       results.push_back(Json{{"scene", b.name},
+                             {"light", light.empty() ? Json(nullptr) : Json(light)},
                              {"size", o.size},
                              {"reuse", mode},
                              {"frames", r.film.frames},

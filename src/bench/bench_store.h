@@ -19,6 +19,9 @@ struct StoreOptions {
   double turn_seconds = 2.0;         ///< the modes take turns of this long (each on its own frames' clock)
   int threads = 0;                   ///< 0: all
   float cell_pixels = 0.0f;          ///< the store modes' --cache-cell-pixels (0: automatic, the renderer's default)
+  /// The conference room's light: the benchmark's own small ceiling light (false), or the panel of Lueur's default
+  /// light rig, as `lueur conference.obj` lights the room (true). The camera is the benchmark's either way.
+  bool conference_rig = false;
 };
 
 /// One JSON object per scene and mode. Progress goes to `log`.
