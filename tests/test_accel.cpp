@@ -7,7 +7,7 @@
 #include <random>
 
 #include "accel/accelerator.h"
-#include "render/renderer.h"
+#include "integrator/renderer.h"
 #include "scene/default_scene.h"
 #include "test_support.h"
 
@@ -118,7 +118,7 @@ Film render(const TracedScene& traced, const RenderSettings& settings, int frame
   film.reset(settings);
   ThreadPool pool(threads);
   const Camera camera = make_camera(default_scene_camera(), settings.width, settings.height);
-  for (int f = 0; f < frames; ++f) render_frame(traced, camera, settings, film, pool);
+  for (int f = 0; f < frames; ++f) render_frame(traced, camera, settings, film, nullptr, pool);
   return film;
 }
 

@@ -10,7 +10,7 @@
 
 #include "accel/embree_backend.h"
 #include "bench/bench_throughput.h"
-#include "render/settings.h"
+#include "passes/render_settings.h"
 #include "test_support.h"
 
 namespace lueur {

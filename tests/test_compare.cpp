@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "image/image_output.h"
-#include "render/frame_turns.h"
+#include "runtime/frame_turns.h"
 #include "settings/compare.h"
 #include "settings/setting_table.h"
 #include "test_support.h"

@@ -6,10 +6,10 @@
 #include <optional>
 
 #include "core/rng.h"
-#include "render/brdf.h"
-#include "render/camera_light.h"
-#include "render/direct_light.h"
-#include "render/renderer.h"
+#include "integrator/brdf.h"
+#include "integrator/camera_light.h"
+#include "integrator/direct_light.h"
+#include "integrator/renderer.h"
 #include "scene/default_scene.h"
 #include "test_support.h"
 
@@ -119,7 +119,7 @@ TEST_P(ClosedBox, RenderedFilmAveragesToRhoLe) {
   for (const SamplerKind sampler : {SamplerKind::kIndependent, SamplerKind::kSobol}) {
     settings.sampler = sampler;
     film.reset(settings);
-    for (int f = 0; f < 32; ++f) render_frame(*traced, camera, settings, film, pool);
+    for (int f = 0; f < 32; ++f) render_frame(*traced, camera, settings, film, nullptr, pool);
     const Image l1 = pass_average(film, Pass::kL1);
     const Image le_pass = pass_average(film, Pass::kLe);
     double mean = 0.0;

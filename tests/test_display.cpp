@@ -7,7 +7,7 @@
 
 #include "display/window_layout.h"
 #include "image/image_output.h"
-#include "render/noise_view.h"
+#include "film/noise_view.h"
 #include "test_support.h"
 #include "ui/headless_screenshot.h"
 

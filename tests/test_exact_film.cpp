@@ -6,7 +6,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "render/renderer.h"
+#include "integrator/renderer.h"
 #include "scene/default_scene.h"
 
 namespace lueur {
@@ -41,14 +41,14 @@ TEST(ExactFilm, AnySplitOfTheFramesGivesTheSameBytes) {
   Film whole;
   whole.reset(settings);
   ThreadPool two(2);
-  for (uint64_t f = 0; f < kFrames; ++f) render_frame(*traced, camera, settings, whole, two);
+  for (uint64_t f = 0; f < kFrames; ++f) render_frame(*traced, camera, settings, whole, nullptr, two);
 
   // Three "ranks" of 1, 2 and 3 threads share each round's frames (rounds end at powers of two, as lueur-mpi's do);
   // each keeps its own exact sums across rounds and hands them over at the round's end.
   std::array<ThreadPool, 3> pools{ThreadPool(1), ThreadPool(2), ThreadPool(3)};
   std::array<Film, 3> ranks;
   for (Film& rank : ranks) {
-    rank.exact_only = true;
+    rank.mode = FilmMode::kExactOnly;
     rank.reset(settings);
   }
   Film combined;
@@ -65,7 +65,7 @@ TEST(ExactFilm, AnySplitOfTheFramesGivesTheSameBytes) {
       Film& rank = ranks[static_cast<size_t>(r)];
       rank.frames = next;
       for (uint64_t f = 0; f < shares[r]; ++f)
-        render_frame(*traced, camera, settings, rank, pools[static_cast<size_t>(r)]);
+        render_frame(*traced, camera, settings, rank, nullptr, pools[static_cast<size_t>(r)]);
       next += shares[r];
     }
     ASSERT_EQ(next, end);

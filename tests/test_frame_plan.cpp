@@ -4,7 +4,7 @@
 
 #include <numeric>
 
-#include "render/frame_plan.h"
+#include "runtime/frame_plan.h"
 
 namespace lueur {
 namespace {

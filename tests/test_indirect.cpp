@@ -4,8 +4,8 @@
 #include <algorithm>
 
 #include "obj_test_support.h"
-#include "render/indirect_light.h"
-#include "render/renderer.h"
+#include "integrator/indirect_light.h"
+#include "integrator/renderer.h"
 #include "scene/default_scene.h"
 #include "scene/obj_loader.h"
 #include "test_support.h"
@@ -22,13 +22,15 @@ PixelStats render_layer_stats(const TracedScene& traced, const CameraSpec& view,
                               Layer layer, int frames, int channel = 0) {
   Film film;
   film.reset(settings);
+  L1Cache store;
+  store.reset(l1_store_bytes(settings));
   ThreadPool pool(2);
   const Camera camera = make_camera(view, settings.width, settings.height);
   const size_t n = film.pixel_count();
   std::vector<double> sum(n, 0.0), sum2(n, 0.0);
   std::vector<float> before(film.sums[static_cast<size_t>(layer)]);
   for (int f = 0; f < frames; ++f) {
-    render_frame(traced, camera, settings, film, pool);
+    render_frame(traced, camera, settings, film, &store, pool);
     const auto& after = film.sums[static_cast<size_t>(layer)];
     for (size_t i = 0; i < n; ++i) {
       const double x = static_cast<double>(after[3 * i + static_cast<size_t>(channel)]) -
@@ -307,7 +309,7 @@ TEST(ReuseModes, ReuseFractionLayerIsHighOnTheDefaultView) {
   Film film;
   film.reset(settings);
   ThreadPool pool(2);
-  const FrameResult r = render_frame(*traced, make_camera(default_view(), 32, 32), settings, film, pool);
+  const FrameResult r = render_frame(*traced, make_camera(default_view(), 32, 32), settings, film, nullptr, pool);
   ASSERT_GT(r.l2_bounce_hits, 0u);
   const double fraction = static_cast<double>(r.l2_reused) / static_cast<double>(r.l2_bounce_hits);
   EXPECT_GT(fraction, 0.5);
@@ -355,7 +357,7 @@ TEST(AntiAliasing, JitteredFramesConvergeToTheMeanOfBothSidesOfAnEdge) {
   // Camera right is -x here? Use a view whose right vector is +x: looking down -z with up +y.
   const Camera camera = make_camera({Vec3(0.0f), Vec3(0, 0, -1), Vec3(0, 1, 0), 10.0f}, 9, 1);
   constexpr int kFrames = 4096;
-  for (int f = 0; f < kFrames; ++f) render_frame(*traced, camera, settings, film, pool);
+  for (int f = 0; f < kFrames; ++f) render_frame(*traced, camera, settings, film, nullptr, pool);
   const Image le = layer_average(film, Layer::kLe);
   EXPECT_FLOAT_EQ(le.at(0, 0).r, 1.0f);  // fully on the emitter
   EXPECT_FLOAT_EQ(le.at(8, 0).r, 0.0f);  // fully off it

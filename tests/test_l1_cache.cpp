@@ -6,8 +6,8 @@
 #include <cstring>
 #include <limits>
 
-#include "render/l1_cache.h"
-#include "render/renderer.h"
+#include "store/l1_cache.h"
+#include "integrator/renderer.h"
 #include "scene/default_scene.h"
 #include "test_support.h"
 
@@ -272,8 +272,8 @@ std::vector<double> dark_side_bias_of_render(int frames, double& lit_side) {
   settings.reuse = ReuseMode::kCache;
   const Camera camera =
       make_camera(CameraSpec{Vec3(0.0f, 3.0f, 0.0f), Vec3(0.0f), Vec3(0.0f, 0.0f, -1.0f), 60.0f}, 64, 64);
-  Film film;
-  film.reset(settings);
+  Accumulation accumulation;
+  accumulation.reset(settings);
   ThreadPool pool(2);
   Pcg32 rng(11, 3);
   const Vec3 up(0.0f, 1.0f, 0.0f);
@@ -286,7 +286,7 @@ std::vector<double> dark_side_bias_of_render(int frames, double& lit_side) {
     for (int i = 0; i < probes; ++i) {
       const Vec3 p(side * 3.0f * footprint * rng.next_float(), 0.0f, rng.next_float() - 0.5f);
       const L1CacheKey key = jittered_key(grid, p, up, rng.next_float(), rng.next_float());
-      const L1CacheCell* cell = film.l1_cache.find(key, hash_of(key));
+      const L1CacheCell* cell = accumulation.store.find(key, hash_of(key));
       if (cell && cell->samples >= kL1CacheMinSamples) sum += cell->sum.r / static_cast<float>(cell->samples);
     }
     return sum / probes;
@@ -298,9 +298,9 @@ std::vector<double> dark_side_bias_of_render(int frames, double& lit_side) {
     const L1CacheGrid grid =
         make_l1_cache_grid(camera, traced->lower, traced->diagonal, settings.cache_cell_pixels_in_use(), generation);
     // The frame starts a new generation with an empty store: its look-ups then all recompute.
-    if (film.l1_cache.generation == generation) total += probe(grid, -1.0f);
+    if (accumulation.store.generation == generation) total += probe(grid, -1.0f);
     running.push_back(total / (f + 1));
-    render_frame(*traced, camera, settings, film, pool);
+    render_frame(*traced, camera, settings, accumulation, pool);
     if (f + 1 == frames) lit_side = probe(grid, 1.0f);
   }
   return running;
@@ -332,16 +332,16 @@ TEST(L1CacheConsistency, ARenderedHardShadowsBiasAfterNFramesIsBelowItsBiasAfter
   EXPECT_LT(late_gen2, 0.6 * late_gen1);
 }
 
-Film render_default_scene(RenderSettings settings, int frames, int threads) {
+Accumulation render_default_scene(RenderSettings settings, int frames, int threads) {
   Scene scene = make_default_scene();
   compute_smooth_normals(scene);
   const auto traced = prepare_scene(std::move(scene));
-  Film film;
-  film.reset(settings);
+  Accumulation accumulation;
+  accumulation.reset(settings);
   ThreadPool pool(threads);
   const Camera camera = make_camera(default_scene_camera(), settings.width, settings.height);
-  for (int f = 0; f < frames; ++f) render_frame(*traced, camera, settings, film, pool);
-  return film;
+  for (int f = 0; f < frames; ++f) render_frame(*traced, camera, settings, accumulation, pool);
+  return accumulation;
 }
 
 TEST(L1CacheRender, BitIdenticalForAnyThreadCountAcrossAGeneration) {
@@ -353,10 +353,11 @@ TEST(L1CacheRender, BitIdenticalForAnyThreadCountAcrossAGeneration) {
     settings.l2_rays = 8;
     settings.reuse = mode;
     settings.cache_cell_pixels = 4.0f;
-    const Film one = render_default_scene(settings, 6, 1);  // frames 0-3 and 4-5: two generations
-    const Film three = render_default_scene(settings, 6, 3);
-    EXPECT_EQ(one.l1_cache.stats().cells, three.l1_cache.stats().cells);
-    EXPECT_GT(one.l1_cache.stats().cells, 0u);
+    const Accumulation one_side = render_default_scene(settings, 6, 1);  // frames 0-3 and 4-5: two generations
+    const Accumulation three_side = render_default_scene(settings, 6, 3);
+    const Film &one = one_side.film, &three = three_side.film;
+    EXPECT_EQ(one_side.store.stats().cells, three_side.store.stats().cells);
+    EXPECT_GT(one_side.store.stats().cells, 0u);
     for (int l = 0; l < kLayerCount; ++l) {
       const auto& a = one.sums[static_cast<size_t>(l)];
       const auto& b = three.sums[static_cast<size_t>(l)];
@@ -383,18 +384,18 @@ TEST(L1CacheRender, ABounceHitThatFindsNoReadyCellFillsItWithTheFillRays) {
   settings.cache_cell_pixels = 2.0f;  // not the automatic 0.7 pixels of a 16-line image: cells most hits share
   const Camera camera =
       make_camera(CameraSpec{Vec3(0.1f, 0.2f, 0.0f), Vec3(-1, -0.5f, -0.3f), Vec3(0, 1, 0), 90.0f}, 16, 16);
-  Film film;
-  film.reset(settings);
+  Accumulation accumulation;
+  accumulation.reset(settings);
   ThreadPool pool(2);
-  const FrameResult first = render_frame(*traced, camera, settings, film, pool);
+  const FrameResult first = render_frame(*traced, camera, settings, accumulation, pool);
   EXPECT_EQ(first.l2_cached, 0u);
   ASSERT_GT(first.l2_bounce_hits, 0u);
   const uint64_t pixels = 16 * 16;  // inside the box every primary ray hits a wall
-  EXPECT_EQ(film.l1_cache.samples_held(),
+  EXPECT_EQ(accumulation.store.samples_held(),
             pixels * 4 + first.l2_bounce_hits * static_cast<uint64_t>(kL1CacheFillRays));
-  EXPECT_EQ(film.l1_cache.stats().refused, 0u);
+  EXPECT_EQ(accumulation.store.stats().refused, 0u);
   // Two fills make a cell ready: the next frame's bounce hits are mostly served.
-  const FrameResult second = render_frame(*traced, camera, settings, film, pool);
+  const FrameResult second = render_frame(*traced, camera, settings, accumulation, pool);
   EXPECT_GT(second.l2_cached, second.l2_bounce_hits / 2);
 }
 
@@ -412,13 +413,13 @@ TEST(L1CacheRender, ABounceHitWhoseCellTheFullStoreWouldRefuseTracesOnlyTheRecom
   uint64_t bounce_hits = 0;
   const auto rays_of_first_frame = [&](ReuseMode reuse, bool no_room) {
     settings.reuse = reuse;
-    Film film;
-    film.reset(settings);
-    if (no_room) film.l1_cache.reset(0);
-    const FrameResult frame = render_frame(*traced, camera, settings, film, pool);
+    Accumulation accumulation;
+    accumulation.reset(settings);
+    if (no_room) accumulation.store.reset(0);
+    const FrameResult frame = render_frame(*traced, camera, settings, accumulation, pool);
     bounce_hits = frame.l2_bounce_hits;
     if (no_room) {
-      EXPECT_EQ(film.l1_cache.samples_held(), 0u);
+      EXPECT_EQ(accumulation.store.samples_held(), 0u);
     }
     return frame.rays;
   };

@@ -15,23 +15,38 @@ namespace {
 namespace fs = std::filesystem;
 
 /// Which folders each folder of src/ may include from (itself included).
+/// The folders of the core library up to the integrator: the film and the L1 store sit beside light choice, below
+/// the integrator, and see neither each other nor it.
+const std::set<std::string> kBelowRuntime = {"core",   "scene", "bvh",  "accel", "passes",
+                                             "lights", "store", "film", "integrator"};
+
+std::set<std::string> with(std::set<std::string> folders, std::initializer_list<std::string> more) {
+  folders.insert(more.begin(), more.end());
+  return folders;
+}
+
 const std::map<std::string, std::set<std::string>> kAllowed = {
     {"core", {"core"}},
     {"scene", {"core", "scene"}},
     {"bvh", {"core", "bvh"}},
     {"accel", {"core", "bvh", "accel"}},
-    {"render", {"core", "scene", "bvh", "accel", "render"}},
-    {"settings", {"core", "scene", "bvh", "accel", "render", "settings"}},
-    {"image", {"core", "render", "image"}},
-    {"display", {"core", "scene", "bvh", "accel", "render", "settings", "image", "display"}},
-    {"ui", {"core", "scene", "bvh", "accel", "render", "settings", "image", "display", "ui"}},
-    {"app", {"core", "scene", "bvh", "accel", "render", "settings", "image", "display", "ui", "app"}},
-    {"bench", {"core", "scene", "bvh", "accel", "render", "settings", "image", "bench"}},
-    {"mpi", {"core", "scene", "bvh", "accel", "render", "settings", "image", "display", "ui", "app", "mpi"}},
+    {"passes", {"core", "passes"}},
+    {"lights", {"core", "scene", "passes", "lights"}},
+    {"store", {"core", "store"}},
+    {"film", {"core", "passes", "film"}},
+    {"integrator", kBelowRuntime},
+    {"runtime", with(kBelowRuntime, {"runtime"})},
+    {"settings", with(kBelowRuntime, {"runtime", "settings"})},
+    {"image", {"core", "passes", "film", "image"}},
+    {"display", with(kBelowRuntime, {"runtime", "settings", "image", "display"})},
+    {"ui", with(kBelowRuntime, {"runtime", "settings", "image", "display", "ui"})},
+    {"app", with(kBelowRuntime, {"runtime", "settings", "image", "display", "ui", "app"})},
+    {"bench", with(kBelowRuntime, {"runtime", "settings", "image", "bench"})},
+    {"mpi", with(kBelowRuntime, {"runtime", "settings", "image", "display", "ui", "app", "mpi"})},
 };
 
 /// The core library's folders: no windowing, GL or UI library.
-const std::set<std::string> kCore = {"core", "scene", "bvh", "accel", "render", "settings", "image"};
+const std::set<std::string> kCore = with(kBelowRuntime, {"runtime", "settings", "image"});
 
 struct Include {
   std::string file, header;

@@ -9,9 +9,9 @@
 
 #include "core/rng.h"
 #include "core/sampling.h"
-#include "render/direct_light.h"
-#include "render/light_lanes.h"
-#include "render/light_sampler.h"
+#include "integrator/direct_light.h"
+#include "lights/light_lanes.h"
+#include "lights/light_sampler.h"
 #include "scene/default_scene.h"
 #include "test_support.h"
 

@@ -8,9 +8,9 @@
 #include <cstdio>
 
 #include "obj_test_support.h"
-#include "render/camera_light.h"
-#include "render/direct_light.h"
-#include "render/renderer.h"
+#include "integrator/camera_light.h"
+#include "integrator/direct_light.h"
+#include "integrator/renderer.h"
 #include "scene/light_rig.h"
 #include "scene/obj_loader.h"
 #include "test_support.h"
@@ -259,7 +259,7 @@ TEST(CameraLight, LightsWhatTheCameraSeesAsDesigned) {
     Film film;
     film.reset(s);
     ThreadPool pool(threads);
-    for (int f = 0; f < 3; ++f) render_frame(*traced, camera, s, film, pool);
+    for (int f = 0; f < 3; ++f) render_frame(*traced, camera, s, film, nullptr, pool);
     return pass_average(film, Pass::kL1).rgb;
   };
   const std::vector<float> one = render(1, true), two = render(2, true), dark = render(2, false);

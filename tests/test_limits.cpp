@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "core/memory_budget.h"
-#include "render/render_memory.h"
+#include "runtime/render_memory.h"
 #include "scene/obj_loader.h"
 #include "test_support.h"
 

@@ -1,4 +1,4 @@
-// The noise estimate (render/noise_estimate.h): the film's snapshots, the estimator on frames of known variance,
+// The noise estimate (film/noise_estimate.h): the film's snapshots, the estimator on frames of known variance,
 // and its honesty on real renders: after 16, 64 and 256 frames each pass's estimated relMSE is within a factor of
 // 1.5 of its true relMSE against a closed form or a long reference, with both samplers.
 #include <gtest/gtest.h>
@@ -10,9 +10,9 @@
 
 #include "core/rng.h"
 #include "image/image_output.h"
-#include "render/noise_estimate.h"
-#include "render/noise_view.h"
-#include "render/renderer.h"
+#include "film/noise_estimate.h"
+#include "film/noise_view.h"
+#include "integrator/renderer.h"
 #include "scene/default_scene.h"
 #include "test_support.h"
 
@@ -41,7 +41,7 @@ Film render(const TracedScene& traced, const CameraSpec& view, const RenderSetti
   ThreadPool pool(2);
   const Camera camera = make_camera(view, settings.width, settings.height);
   for (int f = 0; f < frames; ++f) {
-    render_frame(traced, camera, settings, film, pool);
+    render_frame(traced, camera, settings, film, nullptr, pool);
     if (at) at(film);
   }
   return film;

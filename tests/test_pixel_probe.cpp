@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "render/pixel_probe.h"
+#include "film/pixel_probe.h"
 
 namespace lueur {
 namespace {

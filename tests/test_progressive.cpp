@@ -9,8 +9,8 @@
 #include <random>
 #include <thread>
 
-#include "render/progressive_tracer.h"
-#include "render/renderer.h"
+#include "runtime/progressive_tracer.h"
+#include "integrator/renderer.h"
 #include "scene/default_scene.h"
 #include "scene/obj_loader.h"
 #include "test_support.h"
@@ -63,7 +63,7 @@ TEST(ProgressiveTracer, AccumulatesTheSameBytesAsTheHeadlessRenderer) {
   film.reset(settings);
   ThreadPool pool(1);
   const Camera camera = make_camera(default_camera(), settings.width, settings.height);
-  for (int f = 0; f < 3; ++f) render_frame(*traced, camera, settings, film, pool);
+  for (int f = 0; f < 3; ++f) render_frame(*traced, camera, settings, film, nullptr, pool);
   for (int l = 0; l < kLayerCount; ++l)
     EXPECT_EQ(snapshot.film.sums[static_cast<size_t>(l)], film.sums[static_cast<size_t>(l)]) << kLayerNames[l];
 }

@@ -8,7 +8,7 @@
 
 #include "core/atomic_file.h"
 #include "image/image_output.h"
-#include "render/renderer.h"
+#include "integrator/renderer.h"
 #include "scene/default_scene.h"
 #include "scene/obj_loader.h"
 #include "test_support.h"
@@ -21,7 +21,7 @@ Film render_default(const TracedScene& traced, RenderSettings settings, int fram
   film.reset(settings);
   ThreadPool pool(threads);
   const Camera camera = make_camera(default_scene_camera(), settings.width, settings.height);
-  for (int f = 0; f < frames; ++f) render_frame(traced, camera, settings, film, pool);
+  for (int f = 0; f < frames; ++f) render_frame(traced, camera, settings, film, nullptr, pool);
   return film;
 }
 
@@ -169,7 +169,7 @@ TEST(Render, NonFiniteSamplesAreDroppedAndCounted) {
   // From the floor looking up at the light's emitting side.
   const Camera camera = make_camera({Vec3(0.0f, 0.2f, 0.0f), Vec3(0.0f, 1.0f, 0.01f), Vec3(0, 0, 1), 60.0f}, 8, 8);
   uint64_t dropped = 0;
-  for (int f = 0; f < 2; ++f) dropped += render_frame(*traced, camera, settings, film, pool).dropped_samples;
+  for (int f = 0; f < 2; ++f) dropped += render_frame(*traced, camera, settings, film, nullptr, pool).dropped_samples;
   EXPECT_GE(dropped, 2u * 64u) << "every pixel sees the light";
   for (const auto& sums : film.sums)
     for (const float v : sums) ASSERT_TRUE(std::isfinite(v));

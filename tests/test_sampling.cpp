@@ -9,7 +9,7 @@
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "core/spherical_triangle.h"
-#include "render/light_sampler.h"
+#include "lights/light_sampler.h"
 #include "scene/default_scene.h"
 #include "test_support.h"
 

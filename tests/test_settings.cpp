@@ -8,7 +8,7 @@
 #include <iterator>
 #include <sstream>
 
-#include "render/l1_cache.h"
+#include "store/l1_cache.h"
 #include "settings/setting_table.h"
 #include "settings/view_file.h"
 #include "test_support.h"

@@ -63,8 +63,8 @@ bool wait_until(const std::function<bool()>& condition, double timeout_seconds =
 
 #include <gtest/gtest.h>
 
-#include "render/settings.h"
-#include "render/traced_scene.h"
+#include "passes/render_settings.h"
+#include "integrator/traced_scene.h"
 #include "scene/scene.h"
 
 namespace lueur::test {

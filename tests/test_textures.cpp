@@ -8,9 +8,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "render/direct_light.h"
-#include "render/indirect_light.h"
-#include "render/renderer.h"
+#include "integrator/direct_light.h"
+#include "integrator/indirect_light.h"
+#include "integrator/renderer.h"
 #include "scene/obj_loader.h"
 #include "test_support.h"
 
@@ -104,7 +104,7 @@ TEST(Texture, CheckerboardIsRenderedAtItsTexels) {
   Film film;
   film.reset(settings);
   ThreadPool pool(2);
-  for (int f = 0; f < 4; ++f) render_frame(*traced, camera, settings, film, pool);
+  for (int f = 0; f < 4; ++f) render_frame(*traced, camera, settings, film, nullptr, pool);
   const Image ao = pass_average(film, Pass::kAo);
   int checked = 0;
   for (int sy = 0; sy < 4; ++sy)
@@ -142,10 +142,11 @@ TEST(Texture, ClosedSphereClosedFormsReadTheColourMap) {
     settings.l1_rays = settings.l2_rays = 8;
     settings.reuse = reuse;
     const Camera camera = make_camera(spec, 12, 12);
-    Film film;
-    film.reset(settings);
+    Accumulation accumulation;
+    accumulation.reset(settings);
+    const Film& film = accumulation.film;
     ThreadPool pool(2);
-    for (int f = 0; f < 64; ++f) render_frame(*traced, camera, settings, film, pool);
+    for (int f = 0; f < 64; ++f) render_frame(*traced, camera, settings, accumulation, pool);
     const Image l1 = pass_average(film, Pass::kL1), l2 = pass_average(film, Pass::kL2);
     Vec3 mean_l1(0.0f), mean_l2(0.0f);
     for (int y = 0; y < 12; ++y)

@@ -9,8 +9,8 @@
 #include <thread>
 #include <vector>
 
-#include "render/renderer.h"
-#include "render/thread_pool.h"
+#include "integrator/renderer.h"
+#include "core/thread_pool.h"
 #include "scene/default_scene.h"
 #include "test_support.h"
 
@@ -132,7 +132,7 @@ TEST(CancelledFrame, LeavesTheFilmUntouchedWhenCancelledFromAnotherThread) {
   // How long a frame takes here, so that the cancels below land inside frames: a measurement to aim with, never a
   // bound (the test passes however fast or slow the machine is).
   const auto start = std::chrono::steady_clock::now();
-  ASSERT_TRUE(render_frame(*traced, camera, settings, film, pool).completed);
+  ASSERT_TRUE(render_frame(*traced, camera, settings, film, nullptr, pool).completed);
   const std::chrono::duration<double> frame_time = std::chrono::steady_clock::now() - start;
   const Film after_one = film;
 
@@ -146,7 +146,7 @@ TEST(CancelledFrame, LeavesTheFilmUntouchedWhenCancelledFromAnotherThread) {
       std::this_thread::sleep_for(fraction * frame_time);
       cancel.store(true);
     });
-    const FrameResult r = render_frame(*traced, camera, settings, film, pool, &cancel);
+    const FrameResult r = render_frame(*traced, camera, settings, film, nullptr, pool, &cancel);
     canceller.join();
     if (r.completed) {
       // Finished before the cancel arrived: one more frame, as if uncancelled; start over from one frame.

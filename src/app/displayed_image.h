@@ -2,8 +2,8 @@
 // must not be exposed or tone mapped). The GL display makes the same choice in display/display_pipeline.cpp.
 #pragma once
 
-#include "render/film.h"
-#include "render/noise_view.h"
+#include "film/film.h"
+#include "film/noise_view.h"
 #include "settings/settings.h"
 
 namespace lueur {

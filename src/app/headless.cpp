@@ -11,8 +11,8 @@
 #include "app/render_output.h"
 #include "app/scene_source.h"
 #include "core/stopwatch.h"
-#include "render/noise_estimate.h"
-#include "render/renderer.h"
+#include "film/noise_estimate.h"
+#include "integrator/renderer.h"
 #include "settings/compare.h"
 
 namespace lueur {
@@ -22,13 +22,13 @@ int run_headless(const AppOptions& options) {
   const RenderSettings& settings = options.settings.render;
   const int frames = options.settings.frames;
   const std::optional<Settings>& right = job.right;
-  Film& film = job.film;
-  Film& right_film = job.right_film;
+  Film& film = job.left.film;
+  Accumulation* right_side = right ? &job.right_side : nullptr;
   const Camera& camera = job.camera;
   ThreadPool pool(options.threads);
   const TracedScene& traced = *job.opened.traced;
   if (!options.resume_path.empty()) {
-    resume_films(options, traced, job.films());
+    resume_render(options, traced, job.sides());
     std::fprintf(stderr, "lueur: resuming '%s' after %llu frames\n", options.resume_path.c_str(),
                  static_cast<unsigned long long>(film.frames));
   }
@@ -46,8 +46,8 @@ int run_headless(const AppOptions& options) {
   const InterruptCatcher interrupts;  // from here on, Ctrl-C stops after the frame in flight and keeps the frames
   int interrupted_by = 0;
   while (film.frames < static_cast<uint64_t>(frames)) {
-    const FrameResult frame = render_frame_pair(traced, camera, settings, film, right ? &right->render : nullptr,
-                                                right ? &right_film : nullptr, pool, figures.tally);
+    const FrameResult frame = render_frame_pair(traced, camera, settings, job.left, right ? &right->render : nullptr,
+                                                right_side, pool, figures.tally);
     figures.cache = frame.cache;
     const double elapsed = seconds_since(start);
     const uint64_t done = film.frames;
@@ -79,15 +79,14 @@ int run_headless(const AppOptions& options) {
     if (options.checkpoint_seconds > 0.0 && seconds_since(last_checkpoint) >= options.checkpoint_seconds &&
         done < static_cast<uint64_t>(frames)) {
       figures.seconds = elapsed;
-      write_checkpoint(options, film, right ? &right_film : nullptr, traced, figures);
+      write_checkpoint(options, job.left, right_side, traced, figures);
       last_checkpoint = Clock::now();
     }
   }
   figures.seconds = seconds_since(start);
   if (tty) std::fprintf(stderr, "\n");
-  finish_render(options, film, right ? &right_film : nullptr, traced, figures, out_of_time, stopped_by_noise,
-                interrupted_by);
-  print_run_summary(options, film, right ? &right_film : nullptr, figures);
+  finish_render(options, job.left, right_side, traced, figures, out_of_time, stopped_by_noise, interrupted_by);
+  print_run_summary(options, film, job.right_film(), figures);
   std::printf("%s\n", options.out_path.c_str());
   // The shell's convention for a process ended by a signal, so that a script sees the render was cut short.
   return interrupted_by != 0 ? 128 + interrupted_by : 0;

@@ -15,8 +15,8 @@
 #include "core/regular_file.h"
 #include "core/stopwatch.h"
 #include "image/image_output.h"
-#include "render/noise_estimate.h"
-#include "render/render_memory.h"
+#include "film/noise_estimate.h"
+#include "runtime/render_memory.h"
 #include "scene/obj_loader.h"
 #include "settings/compare.h"
 #include "settings/setting_table.h"
@@ -126,8 +126,8 @@ void FrameTally::add(const FrameTally& other) {
 }
 
 FrameResult render_frame_pair(const TracedScene& traced, const Camera& camera, const RenderSettings& left_settings,
-                              Film& left, const RenderSettings* right_settings, Film* right, ThreadPool& pool,
-                              FrameTally& tally) {
+                              Accumulation& left, const RenderSettings* right_settings, Accumulation* right,
+                              ThreadPool& pool, FrameTally& tally) {
   const Clock::time_point left_start = Clock::now();
   const FrameResult frame = render_frame(traced, camera, left_settings, left, pool);
   tally.left_seconds += seconds_since(left_start);
@@ -191,14 +191,14 @@ RenderJob prepare_render_job(const AppOptions& options, bool writes_output) {
     std::fprintf(stderr, "lueur: warning: --passes names no pass: nothing is rendered and the image is black\n");
   job.camera = make_camera(camera_of(options.settings, job.opened.default_view), settings.width, settings.height);
 
-  job.film.reset(settings);
+  job.left.reset(settings);
   const std::optional<Layer> layer = options.settings.layer;
-  if (layer && !job.film.has(*layer))
+  if (layer && !job.left.film.has(*layer))
     throw UsageError("--view " + std::string(enum_name(kLayerNames, *layer)) +
                      ": that layer is not rendered with these --passes/--reuse settings");
   if (job.right) {
-    job.right_film.reset(job.right->render);
-    if (layer && !job.right_film.has(*layer))
+    job.right_side.reset(job.right->render);
+    if (layer && !job.right_side.film.has(*layer))
       throw UsageError("--view " + std::string(enum_name(kLayerNames, *layer)) +
                        ": that layer is not rendered on the right side of --compare " + options.settings.compare);
   }
@@ -256,16 +256,18 @@ RenderIdentity render_identity(const AppOptions& options, const TracedScene& tra
   return identity;
 }
 
-void write_checkpoint(const AppOptions& options, const Film& film, const Film* right, const TracedScene& traced,
-                      const RunFigures& figures) {
-  std::vector<const Film*> films{&film};
-  if (right) films.push_back(right);
-  write_render_output(options, film, right, traced, figures);
-  write_file_atomically(state_path_of(options.out_path), encode_film_state(render_identity(options, traced), films));
+void write_checkpoint(const AppOptions& options, const Accumulation& left, const Accumulation* right,
+                      const TracedScene& traced, const RunFigures& figures) {
+  std::vector<const Accumulation*> sides{&left};
+  if (right) sides.push_back(right);
+  write_render_output(options, left.film, right ? &right->film : nullptr, traced, figures);
+  write_file_atomically(state_path_of(options.out_path), encode_resume_state(render_identity(options, traced), sides));
 }
 
-void finish_render(const AppOptions& options, const Film& film, const Film* right, const TracedScene& traced,
-                   const RunFigures& figures, bool out_of_time, bool stopped_by_noise, int interrupted_by) {
+void finish_render(const AppOptions& options, const Accumulation& left, const Accumulation* right,
+                   const TracedScene& traced, const RunFigures& figures, bool out_of_time, bool stopped_by_noise,
+                   int interrupted_by) {
+  const Film& film = left.film;
   if (interrupted_by != 0)
     std::fprintf(stderr,
                  "lueur: %s: stopped after %llu of %d frames; writing them%s (a second one ends lueur at once)\n",
@@ -278,12 +280,12 @@ void finish_render(const AppOptions& options, const Film& film, const Film* righ
     std::fprintf(stderr, "lueur: target noise %g not reached in %llu frames (raise --frames)\n",
                  options.settings.target_noise, static_cast<unsigned long long>(film.frames));
   if (options.checkpoint_seconds > 0.0)
-    write_checkpoint(options, film, right, traced, figures);
+    write_checkpoint(options, left, right, traced, figures);
   else
-    write_render_output(options, film, right, traced, figures);
+    write_render_output(options, film, right ? &right->film : nullptr, traced, figures);
 }
 
-void resume_films(const AppOptions& options, const TracedScene& traced, const std::vector<Film*>& films) {
+void resume_render(const AppOptions& options, const TracedScene& traced, const std::vector<Accumulation*>& sides) {
   const std::string& path = options.resume_path;
   // A state no larger than the memory there is: its film was checked against that budget when it was rendered,
   // and /dev/zero or a FIFO named by mistake is refused before it fills memory or blocks.
@@ -294,12 +296,12 @@ void resume_films(const AppOptions& options, const TracedScene& traced, const st
     throw UsageError(std::string("--resume: ") + e.what());
   }
   try {
-    decode_film_state(bytes, render_identity(options, traced), films);
+    decode_resume_state(bytes, render_identity(options, traced), sides);
   } catch (const std::runtime_error& e) {
     throw UsageError("--resume '" + path + "': " + e.what());
   }
-  if (films.front()->frames > static_cast<uint64_t>(options.settings.frames))
-    throw UsageError("--resume '" + path + "': it already holds " + std::to_string(films.front()->frames) +
+  if (sides.front()->film.frames > static_cast<uint64_t>(options.settings.frames))
+    throw UsageError("--resume '" + path + "': it already holds " + std::to_string(sides.front()->film.frames) +
                      " frames, more than --frames " + std::to_string(options.settings.frames));
 }
 

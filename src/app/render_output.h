@@ -10,11 +10,10 @@
 #include "app/options.h"
 #include "app/scene_source.h"
 #include "core/memory_budget.h"
-#include "render/film.h"
-#include "render/film_state.h"
-#include "render/l1_cache.h"
-#include "render/renderer.h"
-#include "render/traced_scene.h"
+#include "film/film.h"
+#include "runtime/resume_state.h"
+#include "integrator/renderer.h"
+#include "integrator/traced_scene.h"
 #include "ui/panel.h"
 
 namespace lueur {
@@ -38,18 +37,21 @@ struct RunFigures {
 /// Renders the next frame of `left` and, for an A/B split, of `right` (rendered with `right_settings`), timing each
 /// side, and adds what they cost to `tally`. Returns the left side's result.
 FrameResult render_frame_pair(const TracedScene& traced, const Camera& camera, const RenderSettings& left_settings,
-                              Film& left, const RenderSettings* right_settings, Film* right, ThreadPool& pool,
-                              FrameTally& tally);
+                              Accumulation& left, const RenderSettings* right_settings, Accumulation* right,
+                              ThreadPool& pool, FrameTally& tally);
 
-/// A render about to start: the scene opened, the camera, the film (and, for an A/B split, the right side's
-/// settings and film), each checked against the settings.
+/// A render about to start: the scene opened, the camera, the film and L1 store (and, for an A/B split, the right
+/// side's settings, film and store), each checked against the settings.
 struct RenderJob {
   OpenedScene opened;
   Camera camera;
-  Film film;
+  Accumulation left;
   std::optional<Settings> right;  ///< --compare: the settings of the split's right side
-  Film right_film;
-  std::vector<Film*> films() { return right ? std::vector<Film*>{&film, &right_film} : std::vector<Film*>{&film}; }
+  Accumulation right_side;
+  std::vector<Accumulation*> sides() {
+    return right ? std::vector<Accumulation*>{&left, &right_side} : std::vector<Accumulation*>{&left};
+  }
+  Film* right_film() { return right ? &right_side.film : nullptr; }
 };
 
 /// Checks the output path (unless `writes_output` is false: an MPI rank other than 0) and the memory, opens the
@@ -86,18 +88,19 @@ std::string state_path_of(const std::string& out_path);
 /// restart and reload rows), the scene's path and size. Display settings and frame counts may change.
 RenderIdentity render_identity(const AppOptions& options, const TracedScene& traced);
 
-/// Writes the image so far and the resume state beside it, each atomically.
-void write_checkpoint(const AppOptions& options, const Film& film, const Film* right, const TracedScene& traced,
-                      const RunFigures& figures);
+/// Writes the image so far and the resume state beside it (each side's film and L1 store), each atomically.
+void write_checkpoint(const AppOptions& options, const Accumulation& left, const Accumulation* right,
+                      const TracedScene& traced, const RunFigures& figures);
 
 /// The end of a render: says why it stopped before its last frame, if it did (the time limit, the target noise, or
 /// `interrupted_by`, the signal that cut it short, 0 for none), and writes the image (and, with --checkpoint, the
 /// resume state). Throws IoError.
-void finish_render(const AppOptions& options, const Film& film, const Film* right, const TracedScene& traced,
-                   const RunFigures& figures, bool out_of_time, bool stopped_by_noise, int interrupted_by = 0);
+void finish_render(const AppOptions& options, const Accumulation& left, const Accumulation* right,
+                   const TracedScene& traced, const RunFigures& figures, bool out_of_time, bool stopped_by_noise,
+                   int interrupted_by = 0);
 
-/// Restores the films from --resume. Throws UsageError naming the file and the problem.
-void resume_films(const AppOptions& options, const TracedScene& traced, const std::vector<Film*>& films);
+/// Restores the films and L1 stores from --resume. Throws UsageError naming the file and the problem.
+void resume_render(const AppOptions& options, const TracedScene& traced, const std::vector<Accumulation*>& sides);
 
 /// The lines printed after a render: frames and rays, L2's reuse, the L1 store, each side of an A/B split, and the
 /// noise estimate of every pass and, last, of the image.

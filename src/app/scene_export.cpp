@@ -10,7 +10,7 @@
 #include "app/scene_source.h"
 #include "core/atomic_file.h"
 #include "core/memory_budget.h"
-#include "render/indirect_light.h"
+#include "integrator/indirect_light.h"
 #include "scene/obj_writer.h"
 #include "settings/setting_table.h"
 

@@ -10,7 +10,7 @@
 #include "app/options.h"
 #include "core/file_watch.h"
 #include "core/memory_budget.h"
-#include "render/traced_scene.h"
+#include "integrator/traced_scene.h"
 #include "settings/settings.h"
 
 namespace lueur {

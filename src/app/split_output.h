@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "render/film.h"
+#include "film/film.h"
 #include "settings/settings.h"
 
 namespace lueur {

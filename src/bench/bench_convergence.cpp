@@ -9,7 +9,7 @@
 #include <string>
 
 #include "core/stopwatch.h"
-#include "render/renderer.h"
+#include "integrator/renderer.h"
 #include "scene/default_scene.h"
 
 namespace lueur::bench {
@@ -35,10 +35,11 @@ struct Setup {
 };
 
 Film render_frames(const Setup& s, const RenderSettings& settings, int frames, std::FILE* log, const char* what) {
-  Film film;
-  film.reset(settings);
+  Accumulation accumulation;
+  accumulation.reset(settings);
   const Clock::time_point start = Clock::now();
-  for (int f = 0; f < frames; ++f) render_frame(s.traced, s.camera, settings, film, s.pool);
+  for (int f = 0; f < frames; ++f) render_frame(s.traced, s.camera, settings, accumulation, s.pool);
+  Film film = std::move(accumulation.film);
   std::fprintf(log, "lueur-bench: reference %s: %d frames in %.1f s\n", what, frames, seconds_since(start));
   return film;
 }
@@ -47,8 +48,9 @@ Film render_frames(const Setup& s, const RenderSettings& settings, int frames, s
 /// end.
 Json run_variant(const Setup& s, const RenderSettings& settings, const std::vector<Measure>& measures,
                  const std::vector<Image>& references, double seconds) {
-  Film film;
-  film.reset(settings);
+  Accumulation accumulation;
+  accumulation.reset(settings);
+  const Film& film = accumulation.film;
   Json curve = Json::array();
   auto errors = [&] {
     Json e = Json::object();
@@ -61,7 +63,7 @@ Json run_variant(const Setup& s, const RenderSettings& settings, const std::vect
   Clock::duration paused{0};
   double elapsed = 0.0;
   for (uint64_t checkpoint = 1;;) {
-    render_frame(s.traced, s.camera, settings, film, s.pool);
+    render_frame(s.traced, s.camera, settings, accumulation, s.pool);
     elapsed = std::chrono::duration<double>(Clock::now() - start - paused).count();
     const bool done = elapsed >= seconds;
     if (film.frames == checkpoint || done) {

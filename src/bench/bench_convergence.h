@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include "render/film.h"
+#include "film/film.h"
 
 namespace lueur::bench {
 

@@ -4,10 +4,10 @@
 #include <algorithm>
 
 #include "core/stopwatch.h"
-#include "render/camera.h"
-#include "render/film.h"
-#include "render/renderer.h"
-#include "render/traced_scene.h"
+#include "core/camera.h"
+#include "film/film.h"
+#include "integrator/renderer.h"
+#include "integrator/traced_scene.h"
 
 namespace lueur::bench {
 
@@ -18,12 +18,12 @@ FrameFigures measure_frames(const TracedScene& traced, const BenchScene& scene, 
   const Camera camera = make_camera(scene.view, size, size);
   Film film;
   film.reset(settings);
-  render_frame(traced, camera, settings, film, pool);  // warm-up: first touches of the tree and buffers
+  render_frame(traced, camera, settings, film, nullptr, pool);  // warm-up: first touches of the tree and buffers
 
   FrameFigures figures;
   const Clock::time_point start = Clock::now();
   while (figures.frames < 2 || figures.seconds < seconds) {
-    const FrameResult r = render_frame(traced, camera, settings, film, pool);
+    const FrameResult r = render_frame(traced, camera, settings, film, nullptr, pool);
     figures.primary += r.primary_rays;
     figures.bounce += r.bounce_rays;
     figures.any_hit += r.rays - r.primary_rays - r.bounce_rays;

@@ -8,8 +8,8 @@
 #include "bench/bench_rays.h"
 #include "bench/bench_scenes.h"
 #include "bench/bench_throughput.h"
-#include "render/thread_pool.h"
-#include "render/traced_scene.h"
+#include "core/thread_pool.h"
+#include "integrator/traced_scene.h"
 
 namespace lueur::bench {
 

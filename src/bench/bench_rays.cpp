@@ -4,8 +4,8 @@
 
 #include "core/rng.h"
 #include "core/sampling.h"
-#include "render/direct_light.h"
-#include "render/traced_scene.h"
+#include "integrator/direct_light.h"
+#include "integrator/traced_scene.h"
 
 namespace lueur::bench {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "render/camera.h"
+#include "core/camera.h"
 #include "scene/scene.h"
 
 namespace lueur::bench {

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "bench/bench_convergence.h"
-#include "render/renderer.h"
+#include "integrator/renderer.h"
 #include "scene/obj_loader.h"
 
 namespace lueur::bench {
@@ -31,6 +31,7 @@ struct Point {
 
 struct Run {
   Film film;
+  L1Cache l1_store;
   std::vector<Point> curve;                                   ///< after every frame
   uint64_t bounce_hits = 0, from_screen = 0, from_store = 0;  ///< where L2's bounce hits took L1, over the run
   L1CacheStats store;                                         ///< the store after the last frame
@@ -43,7 +44,10 @@ struct Racer {
   Run run;
   double seconds = 0.0;
 
-  explicit Racer(const RenderSettings& s) : settings(s) { run.film.reset(s); }
+  explicit Racer(const RenderSettings& s) : settings(s) {
+    run.film.reset(s);
+    run.l1_store.reset(l1_store_bytes(s));
+  }
 
   /// Frames until this racer's own clock passes `until` seconds, the errors after each one (when references are
   /// given).
@@ -51,7 +55,7 @@ struct Racer {
                     const Image* l2_reference, const Image* image_reference) {
     while (seconds < until) {
       const Clock::time_point start = Clock::now();
-      const FrameResult frame = render_frame(traced, camera, settings, run.film, pool);
+      const FrameResult frame = render_frame(traced, camera, settings, run.film, &run.l1_store, pool);
       seconds += std::chrono::duration<double>(Clock::now() - start).count();
       run.bounce_hits += frame.l2_bounce_hits;
       run.from_screen += frame.l2_reused;

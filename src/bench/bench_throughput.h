@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "accel/accelerator.h"
-#include "render/thread_pool.h"
+#include "core/thread_pool.h"
 
 namespace lueur::bench {
 

@@ -29,7 +29,7 @@ inline constexpr std::array<std::string_view, 2> kSamplerKindNames = {"independe
 /// sequence: runs start a power of two apart, so that the samples of any aligned power-of-two block of runs (the
 /// first N frames, and each half of them) lie in one aligned block of the Sobol sequence, in the same places. Each
 /// block is then a net, and the two halves of N frames are distributed alike, as the noise estimate assumes
-/// (render/noise_estimate.h). With a count of 3, runs 3 apart would put frame 1's samples across two blocks.
+/// (film/noise_estimate.h). With a count of 3, runs 3 apart would put frame 1's samples across two blocks.
 constexpr uint64_t first_sample_of_run(uint64_t run, int count) {
   return run * std::bit_ceil(static_cast<uint64_t>(count > 0 ? count : 1));
 }

@@ -7,7 +7,7 @@
 #include <string_view>
 
 #include "display/shader_sources.h"
-#include "render/noise_view.h"
+#include "film/noise_view.h"
 
 namespace lueur {
 namespace {

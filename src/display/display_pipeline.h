@@ -8,8 +8,8 @@
 #include <optional>
 
 #include "display/gl_api.h"
-#include "render/film.h"
-#include "render/tonemap.h"
+#include "film/film.h"
+#include "film/tonemap.h"
 #include "settings/settings.h"
 
 namespace lueur {

@@ -1,12 +1,12 @@
 // Writing images: PNG (tone-mapped 8-bit sRGB), PFM (linear float RGB) and EXR (linear, one layer per pass).
-// Every file is written to a temporary file and renamed. Depends on the render layer (film, tone map); no GL.
+// Every file is written to a temporary file and renamed. Depends on the film (its sums, tone map); no GL.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "render/film.h"
-#include "render/tonemap.h"
+#include "film/film.h"
+#include "film/tonemap.h"
 
 namespace lueur {
 

@@ -18,9 +18,9 @@
 #include "app/render_output.h"
 #include "core/atomic_file.h"
 #include "core/stopwatch.h"
-#include "render/frame_plan.h"
-#include "render/noise_estimate.h"
-#include "render/renderer.h"
+#include "runtime/frame_plan.h"
+#include "film/noise_estimate.h"
+#include "integrator/renderer.h"
 #include "scene/obj_loader.h"
 #include "settings/compare.h"
 
@@ -98,18 +98,19 @@ void check_mpi_options(AppOptions& options) {
     refuse_frame_history(right->render, " (the right side of --compare)");
 }
 
-/// The films one rank accumulates its share into: exact sums only, handed to rank 0 at each reduction.
+/// The films one rank accumulates its share into: exact sums only, handed to rank 0 at each reduction. (Their L1
+/// stores stay empty: lueur-mpi refuses the store modes.)
 struct RankFilms {
-  Film left, right;
+  Accumulation left, right;
   bool has_right = false;
   void reset(const RenderJob& job, double unit) {
-    left.exact_only = right.exact_only = true;
-    left.reset(job.film.width, job.film.height, layers_of(job.film));
-    left.unit = unit;
+    left.film.mode = right.film.mode = FilmMode::kExactOnly;
+    left.film.reset(job.left.film.width, job.left.film.height, layers_of(job.left.film));
+    left.film.unit = unit;
     has_right = job.right.has_value();
     if (has_right) {
-      right.reset(job.right_film.width, job.right_film.height, layers_of(job.right_film));
-      right.unit = unit;
+      right.film.reset(job.right_side.film.width, job.right_side.film.height, layers_of(job.right_side.film));
+      right.film.unit = unit;
     }
   }
   static std::array<bool, kLayerCount> layers_of(const Film& film) {
@@ -129,8 +130,8 @@ void reduce_films(const MpiWorld& world, RankFilms& mine, RenderJob& job, uint64
     if (world.root()) whole.add_exact(part.exact, frames_after, snapshots_from);
     for (auto& layer : part.exact) std::fill(layer.begin(), layer.end(), 0);
   };
-  reduce(mine.left, job.film);
-  if (mine.has_right) reduce(mine.right, job.right_film);
+  reduce(mine.left.film, job.left.film);
+  if (mine.has_right) reduce(mine.right.film, job.right_side.film);
 }
 
 struct Setup {
@@ -173,7 +174,7 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
   try {
     setup.job = prepare_render_job(options, world.root());
     if (world.root() && !options.resume_path.empty())
-      resume_films(options, *setup.job.opened.traced, setup.job.films());
+      resume_render(options, *setup.job.opened.traced, setup.job.sides());
   } catch (const std::exception& e) {
     error = error_line(e);
   }
@@ -182,15 +183,15 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
   const TracedScene& traced = *job.opened.traced;
   const RenderSettings& settings = options.settings.render;
   const double unit = film_unit(traced, job.camera, settings);
-  if (world.root() && job.film.unit != 0.0 && job.film.unit != unit)
+  if (world.root() && job.left.film.unit != 0.0 && job.left.film.unit != unit)
     error = "--resume '" + options.resume_path + "': its sums are in another unit (another version of Lueur wrote it)";
   if (!all_fine(world, error, message)) return fail();
   if (world.root()) {
-    job.film.unit = unit;
-    job.right_film.unit = unit;
+    job.left.film.unit = unit;
+    job.right_side.film.unit = unit;
     install_stop_message(options);
   }
-  uint64_t done = job.film.frames;
+  uint64_t done = job.left.film.frames;
   broadcast(done);
 
   // Ranks that share a machine share its cores, as far as mpirun's binding lets them: Open MPI binds each rank to one
@@ -255,8 +256,8 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
 
       RankReport report;
       const Clock::time_point round_start = Clock::now();
-      mine.left.frames = my_first;
-      mine.right.frames = my_first;
+      mine.left.film.frames = my_first;
+      mine.right.film.frames = my_first;
       for (uint64_t f = 0; f < my_count; ++f)
         render_frame_pair(traced, job.camera, settings, mine.left, mine.has_right ? &job.right->render : nullptr,
                           mine.has_right ? &mine.right : nullptr, pool, report.tally);
@@ -293,9 +294,9 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
         ++reductions;
       }
       if (world.root()) {
-        if (decision.reduce) record_noise_history(options, job.film, elapsed, figures);
+        if (decision.reduce) record_noise_history(options, job.left.film, elapsed, figures);
         if (decision.reduce && options.settings.target_noise > 0.0 &&
-            estimate_image_noise(job.film, settings.enabled, options.settings.weights, settings.sampler).rel_mse <
+            estimate_image_noise(job.left.film, settings.enabled, options.settings.weights, settings.sampler).rel_mse <
                 options.settings.target_noise) {
           stopped_by_noise = true;
           decision.stop = 1;
@@ -310,7 +311,7 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
         if (decision.reduce && !decision.stop && options.checkpoint_seconds > 0.0 &&
             seconds_since(last_checkpoint) >= options.checkpoint_seconds) {
           figures.seconds = elapsed;
-          write_checkpoint(options, job.film, job.right ? &job.right_film : nullptr, traced, figures);
+          write_checkpoint(options, job.left, job.right ? &job.right_side : nullptr, traced, figures);
           last_checkpoint = Clock::now();
         }
       }
@@ -329,16 +330,16 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
   figures.seconds = seconds_since(start);
   if (tty) std::fprintf(stderr, "\n");
   try {
-    finish_render(options, job.film, job.right ? &job.right_film : nullptr, traced, figures, out_of_time,
+    finish_render(options, job.left, job.right ? &job.right_side : nullptr, traced, figures, out_of_time,
                   stopped_by_noise);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "lueur-mpi: error: %s\n", error_line(e).c_str());
     return 2;
   }
-  print_run_summary(options, job.film, job.right ? &job.right_film : nullptr, figures);
+  print_run_summary(options, job.left.film, job.right_film(), figures);
   uint64_t reduced_bytes = 0;
-  for (const Film* film : job.films())
-    for (const auto& layer : film->exact) reduced_bytes += layer.size() * sizeof(int64_t);
+  for (const Accumulation* side : job.sides())
+    for (const auto& layer : side->film.exact) reduced_bytes += layer.size() * sizeof(int64_t);
   std::fprintf(stderr,
                "lueur: the %d ranks rendered %.1f%% of the time; %d reductions of %.1f MiB took %.3f s in all\n",
                world.size, 100.0 * busy_seconds / (world.size * figures.seconds), reductions,

@@ -4,7 +4,7 @@
 #include <limits>
 #include <string>
 
-#include "render/l1_cache.h"
+#include "store/l1_cache.h"
 #include "settings/setting_kinds.h"
 
 namespace lueur::setting_rows {
@@ -48,7 +48,7 @@ std::vector<Row> make_rows() {
       "where L2 takes L1 at a bounce hit from: nowhere (recompute), this frame's pixels, their running average, the "
       "world-space L1 store, or the store where its cell is ready and the screen where not",
       E::kRestart, kReuseModeNames, [](auto& s) -> auto& { return s.render.reuse; }));
-  // The store's fill is a constant of the store (render/l1_cache.h): the text is built from it, never restated.
+  // The store's fill is a constant of the store (store/l1_cache.h): the text is built from it, never restated.
   static const std::string recompute_help =
       "share of the L1 rays that recompute L1 where it cannot be reused (the store modes recompute with " +
       std::to_string(kL1CacheFillRays) + " shadow rays, which fill the store's cell, where the store has room for it)";

@@ -1,7 +1,7 @@
 // The one settings model: everything a view file, the command line and the panel set (camera, size, passes,
 // weights, sampling, reuse, back-end, display, frame counts). What each member means, its range, default, help and
 // what a change to it does are rows of the table in settings/setting_table.h, from which the command line, view
-// files, image metadata and the panel's limits are all made. Depends on the render layer's plain types only.
+// files, image metadata and the panel's limits are all made. Depends on the plain types of the core library below it.
 #pragma once
 
 #include <array>
@@ -10,9 +10,9 @@
 #include <string_view>
 
 #include "accel/accel_kind.h"
-#include "render/camera.h"
-#include "render/settings.h"
-#include "render/tonemap.h"
+#include "core/camera.h"
+#include "passes/render_settings.h"
+#include "film/tonemap.h"
 
 namespace lueur {
 
@@ -27,7 +27,7 @@ struct Settings {
   RenderSettings render;             ///< what the tracer needs: size, passes, sampling, reuse, seed
   std::array<float, kPassCount> weights = kReportWeights;
   std::optional<Layer> layer;  ///< what is shown; unset: the weighted combination of the passes
-  bool show_noise = false;     ///< show the combined image's estimated noise instead (render/noise_view.h)
+  bool show_noise = false;     ///< show the combined image's estimated noise instead (film/noise_view.h)
   DisplaySettings display;
   bool smooth_normals = true;               ///< smooth normals for files without them
   bool light_rig = true;                    ///< scenes without emitters get the default light rig

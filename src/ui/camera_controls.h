@@ -2,7 +2,7 @@
 // the target, fly with WASD/QE. Pure functions of a CameraSpec (no ImGui, no GLFW), so they are tested without one.
 #pragma once
 
-#include "render/camera.h"
+#include "core/camera.h"
 
 namespace lueur {
 

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "render/indirect_light.h"
+#include "integrator/indirect_light.h"
 #include "settings/compare.h"
 #include "settings/setting_table.h"
 #include "ui/pixel_inspector.h"

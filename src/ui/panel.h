@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "render/noise_estimate.h"
-#include "render/pixel_probe.h"
-#include "render/progressive_tracer.h"
-#include "render/traced_scene.h"
+#include "film/noise_estimate.h"
+#include "film/pixel_probe.h"
+#include "runtime/progressive_tracer.h"
+#include "integrator/traced_scene.h"
 #include "settings/settings.h"
 
 namespace lueur {
@@ -60,7 +60,7 @@ struct PanelModel {
   std::string message;               ///< the last saved path or error
   bool message_is_error = false;
   std::string view_path = "lueur-view.json";  ///< the file "Save view" and "Load view" use
-  /// The pixel inspector's pixel (render/pixel_probe.h): under the mouse, or pinned; none before the mouse is over
+  /// The pixel inspector's pixel (film/pixel_probe.h): under the mouse, or pinned; none before the mouse is over
   /// the image.
   std::optional<PixelProbe> probe;
   bool probe_pinned = false, probe_right_side = false;

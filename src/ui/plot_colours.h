@@ -6,7 +6,7 @@
 
 #include <array>
 
-#include "render/settings.h"
+#include "passes/render_settings.h"
 
 namespace lueur {
 

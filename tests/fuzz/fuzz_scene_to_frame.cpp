@@ -14,11 +14,11 @@
 #include <string_view>
 
 #include "image/image_output.h"
-#include "render/camera.h"
-#include "render/film.h"
-#include "render/renderer.h"
-#include "render/thread_pool.h"
-#include "render/traced_scene.h"
+#include "core/camera.h"
+#include "film/film.h"
+#include "integrator/renderer.h"
+#include "core/thread_pool.h"
+#include "integrator/traced_scene.h"
 #include "scene/obj_loader.h"
 #include "scene/texture.h"
 
@@ -93,7 +93,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static ThreadPool pool(1);
   Film film;
   film.reset(settings);
-  for (int frame = 0; frame < 2; ++frame) render_frame(*traced, camera, settings, film, pool);
+  for (int frame = 0; frame < 2; ++frame) render_frame(*traced, camera, settings, film, nullptr, pool);
 
   for (const std::vector<float>& sums : film.sums)
     for (const float v : sums)

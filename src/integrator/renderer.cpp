@@ -1,0 +1,303 @@
+// One frame in two phases over the tiles. Phase 1: a jittered primary ray per pixel, Le, L1 and AO at its first
+// hit, and the screen buffer L2 reuses. Phase 2: L2, which may read any pixel's phase-1 L1. Results go to per-frame
+// buffers and are added to the film only once the whole frame has finished, so a cancelled frame leaves no trace
+// and every pixel's sums see the same sequence of additions whatever the thread count.
+#include "integrator/renderer.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "core/stopwatch.h"
+#include "integrator/camera_light.h"
+#include "integrator/direct_light.h"
+#include "integrator/indirect_light.h"
+
+namespace lueur {
+namespace {
+
+struct FrameBuffers {
+  std::array<std::vector<Vec3>, kLayerCount> values;  ///< this frame's value per needed layer and pixel
+  std::vector<SurfacePoint> hits;                     ///< primary hit per pixel (triangle kNoHit: none)
+  ScreenBuffer screen;
+};
+
+uint64_t pixel_index(int x, int y, int width) {
+  return static_cast<uint64_t>(y) * static_cast<uint64_t>(width) + static_cast<uint64_t>(x);
+}
+
+void set_layer(FrameBuffers& frame, Layer layer, size_t pixel, const Vec3& value) {
+  auto& values = frame.values[static_cast<size_t>(layer)];
+  if (!values.empty()) values[pixel] = value;
+}
+
+/// Le by `settings.le_rays` camera rays of their own (when there are more than one): the sum of the emission they
+/// see. Emission is cheap to see and its edges are the sharpest in the image, so they get more camera rays per frame
+/// than the shading does. They are one aligned block of one sequence per frame, not the pixel's primary ray plus
+/// le_rays - 1 others: the primary's jitter is a sequence of its own (over frames), and three of each block of four
+/// points are no net: a frame's missing point left Le's error falling as 1 / frames, where whole nets fall faster.
+Vec3 emission_of_le_rays(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, int x, int y,
+                         uint64_t pixel, uint64_t frame, uint64_t& rays, uint64_t& primary_rays) {
+  const int count = settings.le_rays;
+  Vec3 sum(0.0f);
+  PixelSampler sampler(settings.sampler, settings.seed, pixel, frame, RngPurpose::kEmission);
+  std::array<float, kSampleBatch> u1, u2;
+  for (int batch = 0; batch < count; batch += kSampleBatch) {
+    const int batch_count = std::min(kSampleBatch, count - batch);
+    sampler.draw_2d(first_sample_of_run(frame, count) + static_cast<uint64_t>(batch), batch_count, u1.data(),
+                    u2.data());
+    for (size_t k = 0; k < static_cast<size_t>(batch_count); ++k) {
+      const Ray ray = camera_ray(camera, static_cast<float>(x) + u1[k], static_cast<float>(y) + u2[k]);
+      ++rays;
+      ++primary_rays;
+      const Hit hit = intersect_closest(traced.accel, ray);
+      if (hit.found() && seen_from_front(traced.scene, hit.triangle, ray.dir))
+        sum += traced.scene.material_of(hit.triangle).ke;
+    }
+  }
+  return sum;
+}
+
+/// The colour of a cell of the L1 store in the cache-cells view: its key hashed into RGB.
+Vec3 cell_colour(const L1CacheKey& key) {
+  const uint64_t h = hash_of(key);
+  const auto channel = [h](int shift) { return static_cast<float>((h >> shift) & 0xffu) / 255.0f; };
+  return Vec3(channel(0), channel(8), channel(16));
+}
+
+/// Phase 1 for one pixel. With a store grid, its L1 estimate becomes a record for the L1 store.
+void trace_primary(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, const Film& film,
+                   int x, int y, uint64_t frame, FrameBuffers& out, uint64_t& rays, uint64_t& primary_rays,
+                   const L1CacheGrid* grid, std::vector<L1CacheRecord>* records) {
+  const size_t i = pixel_index(x, y, camera.width);
+  const uint64_t pixel = i;
+  PixelSampler camera_sampler(settings.sampler, settings.seed, pixel, frame, RngPurpose::kCamera);
+  camera_sampler.start_sample(frame);
+  const Vec2 jitter = camera_sampler.get_2d();
+  const Ray ray = camera_ray(camera, static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y);
+  ++rays;
+  ++primary_rays;
+  const Hit hit = intersect_closest(traced.accel, ray);
+  const bool le = settings.pass_enabled(Pass::kLe);
+  // One Le ray: the primary's. More: rays of their own (emission_of_le_rays), the primary's emission unused.
+  const bool le_of_own_rays = le && settings.le_rays > 1;
+  if (le_of_own_rays) {
+    const Vec3 emission = emission_of_le_rays(traced, camera, settings, x, y, pixel, frame, rays, primary_rays);
+    set_layer(out, Layer::kLe, i, emission / static_cast<float>(settings.le_rays));
+  }
+  if (!hit.found()) return;
+
+  const SurfacePoint sp = make_surface_point(traced.scene, ray, hit);
+  out.hits[i] = sp;
+  out.screen.triangle[i] = hit.triangle;
+  out.screen.pixels[i].position = sp.position;
+  out.screen.pixels[i].albedo = sp.albedo;
+  const Material& material = traced.scene.material_of(hit.triangle);
+  if (le && !le_of_own_rays) set_layer(out, Layer::kLe, i, sp.front_face ? material.ke : Vec3(0.0f));
+
+  const bool l2 = settings.pass_enabled(Pass::kL2);
+  const bool screen_needs_l1 = l2 && uses_screen(settings.reuse);
+  if (grid)
+    set_layer(out, Layer::kCacheCells, i,
+              cell_colour(grid->key(sp.position, sp.geometric_normal, grid->level_at(sp.position))));
+  if (settings.pass_enabled(Pass::kL1) || screen_needs_l1) {
+    PixelSampler sampler(settings.sampler, settings.seed, pixel, frame, RngPurpose::kDirect);
+    DirectLightOptions options;
+    options.strategy = settings.lights;
+    options.rays = settings.l1_rays;
+    options.blinn_k = settings.blinn_k;
+    EmitterRecord head_light;
+    if (settings.camera_light) {
+      head_light = make_camera_light(camera, traced.diagonal);
+      options.camera_light = &head_light;
+    }
+    Vec3 diffuse(0.0f), arriving(0.0f);
+    const Vec3 l1 = estimate_direct_light(traced, sp, options, sampler, first_sample_of_run(frame, options.rays), rays,
+                                          &diffuse, grid ? &arriving : nullptr);
+    if (grid && options.rays > 0) {
+      Pcg32 cell_jitter = make_pixel_rng(settings.seed, pixel, frame, RngPurpose::kCacheFeed);
+      const float u1 = cell_jitter.next_float(), u2 = cell_jitter.next_float();
+      const L1CacheKey key = jittered_key(*grid, sp.position, sp.geometric_normal, u1, u2);
+      records->push_back(make_l1_record(key, hash_of(key), arriving, static_cast<uint32_t>(options.rays)));
+    }
+    set_layer(out, Layer::kL1, i, l1);
+    set_layer(out, Layer::kL1Diffuse, i, diffuse);
+    const Vec3 screen_l1 = settings.reuse_diffuse_only ? diffuse : l1;
+    out.screen.pixels[i].l1 = screen_l1;
+    if (screen_needs_l1 && settings.reuse == ReuseMode::kAverage) {
+      // The running average including this frame: less noisy than this frame alone.
+      const auto& sums = film.sums[static_cast<size_t>(settings.reuse_diffuse_only ? Layer::kL1Diffuse : Layer::kL1)];
+      const Vec3 previous(sums[3 * i], sums[3 * i + 1], sums[3 * i + 2]);
+      out.screen.l1_average[i] = (previous + screen_l1) / static_cast<float>(film.frames + 1);
+    }
+  }
+  if (settings.pass_enabled(Pass::kAo)) {
+    PixelSampler sampler(settings.sampler, settings.seed, pixel, frame, RngPurpose::kOcclusion);
+    set_layer(out, Layer::kAo, i,
+              estimate_ambient_occlusion(traced, sp, settings.ao_rays, ambient_occlusion_radius(traced, settings),
+                                         sampler, first_sample_of_run(frame, settings.ao_rays), rays));
+  }
+}
+
+/// Phase 2 for one pixel.
+void trace_indirect(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, int x, int y,
+                    uint64_t frame, FrameBuffers& out, uint64_t& rays, uint64_t& bounce_rays, uint64_t& bounce_hits,
+                    uint64_t& reused, uint64_t& cached, const L1Cache* store, const L1CacheGrid* grid,
+                    std::vector<L1CacheRecord>* records) {
+  const size_t i = pixel_index(x, y, camera.width);
+  const SurfacePoint& sp = out.hits[i];
+  if (sp.triangle == kNoHit) return;
+  PixelSampler bounce_sampler(settings.sampler, settings.seed, i, frame, RngPurpose::kIndirect);
+  PixelSampler recompute_sampler(settings.sampler, settings.seed, i, frame, RngPurpose::kRecompute);
+  Pcg32 jitter(0, 0);
+  L1CacheAccess access;
+  if (store) {
+    jitter = make_pixel_rng(settings.seed, i, frame, RngPurpose::kCacheLookup);
+    access = L1CacheAccess{store, grid, &jitter, records};
+  }
+  const IndirectResult r =
+      estimate_indirect_light(traced, camera, out.screen, sp, settings, bounce_sampler, recompute_sampler,
+                              first_sample_of_run(frame, settings.l2_rays), rays, store ? &access : nullptr);
+  set_layer(out, Layer::kL2, i, r.l2);
+  set_layer(out, Layer::kL2Reused, i, r.from_reused);
+  set_layer(out, Layer::kL2Recomputed, i, r.from_recomputed);
+  set_layer(out, Layer::kL2Cached, i, r.from_cached);
+  // Where the bounce hits took L1(q) from, as shares: red the screen, green the store, blue recomputed.
+  if (r.bounce_hits > 0) {
+    const auto share = [&](int n) { return static_cast<float>(n) / static_cast<float>(r.bounce_hits); };
+    set_layer(out, Layer::kReuseFraction, i,
+              Vec3(share(r.reused), share(r.cached), share(r.bounce_hits - r.reused - r.cached)));
+  }
+  bounce_rays += static_cast<uint64_t>(r.bounce_rays);
+  bounce_hits += static_cast<uint64_t>(r.bounce_hits);
+  reused += static_cast<uint64_t>(r.reused);
+  cached += static_cast<uint64_t>(r.cached);
+}
+
+/// Tiles across an image `size` pixels wide (or down one that high).
+int tiles_across(int size) { return (size + kTileSize - 1) / kTileSize; }
+int tile_count(int width, int height) { return tiles_across(width) * tiles_across(height); }
+
+/// The tile (the task of for_each_tile) that pixel (x, y) belongs to.
+int tile_of(int x, int y, int width) { return (y / kTileSize) * tiles_across(width) + x / kTileSize; }
+
+/// Runs `per_pixel(x, y, worker)` over every pixel, one tile per task.
+template <typename PerPixel>
+void for_each_tile(ThreadPool& pool, int width, int height, const std::atomic<bool>* cancel, PerPixel&& per_pixel) {
+  const int tiles_x = tiles_across(width);
+  pool.parallel_for(tile_count(width, height), [&](int tile, int worker) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) return;
+    const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
+    const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) per_pixel(x, y, worker);
+  });
+}
+
+/// Per-worker counters, padded apart so that workers do not share cache lines.
+struct alignas(64) WorkerCounters {
+  uint64_t rays = 0, primary_rays = 0, bounce_rays = 0, bounce_hits = 0, reused = 0, cached = 0;
+};
+
+}  // namespace
+
+double film_unit(const TracedScene& traced, const Camera& camera, const RenderSettings& settings) {
+  float brightest = 1.0f;
+  for (const EmitterRecord& emitter : traced.lights.records)
+    brightest = std::max({brightest, emitter.ke.r, emitter.ke.g, emitter.ke.b});
+  if (settings.camera_light) {
+    const Vec3 ke = make_camera_light(camera, traced.diagonal).ke;
+    brightest = std::max({brightest, ke.r, ke.g, ke.b});
+  }
+  if (!std::isfinite(brightest)) brightest = std::numeric_limits<float>::max();
+  int exponent = 0;
+  std::frexp(brightest, &exponent);  // brightest < 2^exponent
+  return std::ldexp(1.0, exponent - 32);
+}
+
+uint64_t l1_store_bytes(const RenderSettings& settings) {
+  if (!settings.pass_enabled(Pass::kL2) || !uses_cache(settings.reuse)) return 0;
+  return static_cast<uint64_t>(std::max(settings.cache_mb, 0)) << 20;
+}
+
+FrameResult render_frame(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, Film& film,
+                         L1Cache* l1_store, ThreadPool& pool, const std::atomic<bool>* cancel) {
+  FrameResult result;
+  const int width = film.width, height = film.height;
+  const uint64_t frame = film.frames;
+  if (film.unit == 0.0) film.unit = film_unit(traced, camera, settings);
+  if (film.mode == FilmMode::kExactOnly && settings.pass_enabled(Pass::kL2) && settings.reuse == ReuseMode::kAverage)
+    throw std::logic_error("render_frame: --reuse average reads the film's float sums, which this film does not keep");
+
+  FrameBuffers buffers;
+  for (int l = 0; l < kLayerCount; ++l)
+    if (film.has(static_cast<Layer>(l))) buffers.values[static_cast<size_t>(l)].assign(film.pixel_count(), Vec3(0.0f));
+  SurfacePoint none;
+  none.triangle = kNoHit;
+  buffers.hits.assign(film.pixel_count(), none);
+  buffers.screen.resize(width, height);
+  if (settings.pass_enabled(Pass::kL2) && settings.reuse == ReuseMode::kAverage)
+    buffers.screen.l1_average.assign(film.pixel_count(), Vec3(0.0f));
+
+  // The L1 store: read as the previous frames left it, while this frame's estimates wait in per-tile records (phase
+  // 1's tiles, then phase 2's) to be merged in that order at the end. A new generation starts it afresh, smaller.
+  const bool store = settings.pass_enabled(Pass::kL2) && uses_cache(settings.reuse);
+  if (store && !l1_store)
+    throw std::invalid_argument("render_frame: --reuse " + std::string(enum_name(kReuseModeNames, settings.reuse)) +
+                                " needs an L1 store");
+  L1CacheGrid grid;
+  const int tiles = tile_count(width, height);
+  std::vector<std::vector<L1CacheRecord>> records(store ? 2 * static_cast<size_t>(tiles) : 0);
+  if (store) {
+    const int generation = l1_cache_generation(frame);
+    if (l1_store->generation != generation) {
+      l1_store->clear();
+      l1_store->generation = generation;
+    }
+    grid = make_l1_cache_grid(camera, traced.lower, traced.diagonal, settings.cache_cell_pixels_in_use(), generation);
+  }
+  const auto tile_records = [&](int phase, int x, int y) {
+    return &records[static_cast<size_t>(phase * tiles + tile_of(x, y, width))];
+  };
+
+  std::vector<WorkerCounters> counters(static_cast<size_t>(pool.thread_count()));
+  for_each_tile(pool, width, height, cancel, [&](int x, int y, int worker) {
+    WorkerCounters& c = counters[static_cast<size_t>(worker)];
+    trace_primary(traced, camera, settings, film, x, y, frame, buffers, c.rays, c.primary_rays, store ? &grid : nullptr,
+                  store ? tile_records(0, x, y) : nullptr);
+  });
+  if (settings.pass_enabled(Pass::kL2)) {
+    const Clock::time_point l2_start = Clock::now();
+    for_each_tile(pool, width, height, cancel, [&](int x, int y, int worker) {
+      WorkerCounters& c = counters[static_cast<size_t>(worker)];
+      trace_indirect(traced, camera, settings, x, y, frame, buffers, c.rays, c.bounce_rays, c.bounce_hits, c.reused,
+                     c.cached, store ? l1_store : nullptr, store ? &grid : nullptr,
+                     store ? tile_records(1, x, y) : nullptr);
+    });
+    result.l2_seconds = seconds_since(l2_start);
+  }
+  for (const WorkerCounters& c : counters) {
+    result.rays += c.rays;
+    result.primary_rays += c.primary_rays;
+    result.bounce_rays += c.bounce_rays;
+    result.l2_bounce_hits += c.bounce_hits;
+    result.l2_reused += c.reused;
+    result.l2_cached += c.cached;
+  }
+
+  if (cancel && cancel->load()) {
+    result.completed = false;
+    return result;
+  }
+  if (store) {
+    l1_store->merge(records, pool);
+    result.cache = l1_store->stats();
+  }
+  result.dropped_samples = film.add_frame(buffers.values);
+  return result;
+}
+
+}  // namespace lueur

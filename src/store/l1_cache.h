@@ -1,0 +1,196 @@
+// A world-space store of L1 (the report's improvement II-B): a hashed grid of cells over the surfaces seen, each
+// the running sum of the light arriving there (L1 without the BRDF) that L1 estimates found, so that L2 can take
+// L1(q) where the screen never saw q. Cells are keyed by quantised position, size level and the normal's direction,
+// hold their full key (a collision is a different key, never a merge), and live in open-addressed shards that grow
+// with the surfaces seen up to a cap. A frame only reads the store; what it found is merged in at its end, in pixel
+// order, so that the image does not depend on the thread count.
+// This folder, store/, is the integrator's cache: it is kept beside the film (integrator/renderer.h: Accumulation),
+// saved beside it in the resume state, and depends on core only (the camera, the thread pool, byte streams).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/byte_stream.h"
+#include "core/math.h"
+#include "core/rng.h"
+#include "core/camera.h"
+#include "core/thread_pool.h"
+
+namespace lueur {
+
+/// Which cell a surface point falls in.
+struct L1CacheKey {
+  int32_t x = 0, y = 0, z = 0;  ///< the position over the cell size, floored
+  uint8_t level = 0;            ///< the cell size is base_size x 2^level
+  uint8_t normal = 0;           ///< the normal's dominant axis and sign: 0..5 (+x -x +y -y +z -z)
+  uint16_t unused = 0;
+  bool operator==(const L1CacheKey&) const = default;
+};
+
+/// What a cell holds: the sum of the arriving light of every shadow-ray sample merged into it, and their count.
+struct L1CacheCell {
+  L1CacheKey key;
+  uint32_t samples = 0;  ///< 0: an empty slot
+  Vec3 sum{0.0f};
+};
+
+/// One L1 estimate on its way to the store: its cell, and its arriving light summed over its `samples` rays.
+struct L1CacheRecord {
+  L1CacheKey key;
+  uint64_t hash = 0;
+  Vec3 sum{0.0f};
+  uint32_t samples = 0;
+};
+
+/// The record of an L1 estimate whose light arriving, averaged over `samples` samples, was `arriving`.
+inline L1CacheRecord make_l1_record(const L1CacheKey& key, uint64_t hash, const Vec3& arriving, uint32_t samples) {
+  return L1CacheRecord{key, hash, arriving * static_cast<float>(samples), samples};
+}
+
+/// How surface points map to cells: a size that covers `cell_pixels` pixels at the point's distance from the camera
+/// (as wide as that many pixels would be at that depth straight ahead),
+/// rounded to a power of two of `base_size` (so that neighbouring points of a surface mostly share a level), and
+/// halved per `generation`.
+struct L1CacheGrid {
+  Vec3 origin{0.0f};       ///< the scene's bounding box corner: cell coordinates count from there
+  float base_size = 1.0f;  ///< the smallest cell: the scene's diagonal / 2^20
+  Vec3 eye{0.0f};
+  float pixel_per_depth = 1.0f;  ///< a pixel's width at unit depth
+  float cell_pixels = 8.0f;
+  int generation = 0;
+  float inverse_base_size = 1.0f;
+  float ratio_per_distance = 1.0f;  ///< a point's cell size over base_size, per unit of distance from the eye
+
+  /// The cell level at `position`, and the size of its cells.
+  int level_at(const Vec3& position) const;
+  float size_of(int level) const;
+  /// The key of the cell of `level` that holds `position`, on the side `normal` faces.
+  L1CacheKey key(const Vec3& position, const Vec3& normal, int level) const;
+};
+
+/// The grid of a frame: cells of `cell_pixels` pixels at their distance from `camera`, halved `generation` times,
+/// counted from the scene's corner `lower` in powers of two of its `diagonal` / 2^20.
+L1CacheGrid make_l1_cache_grid(const Camera& camera, const Vec3& lower, float diagonal, float cell_pixels,
+                               int generation);
+
+/// The key of a jittered look-up or feed at a surface point: the position moved uniformly across one cell, in the
+/// plane of its normal (u1, u2 in [0, 1)), so that the grid shows as noise rather than as blocks (Binder, Fricke and
+/// Keller 2018). The level is that of the point itself.
+L1CacheKey jittered_key(const L1CacheGrid& grid, const Vec3& position, const Vec3& normal, float u1, float u2);
+
+/// A cell serves look-ups once it holds this many samples of arriving light (below, L1 is traced and added to it).
+/// Chosen with cells of 2 pixels (the automatic size at 128 lines, settings.h): most of the store's error was its
+/// cells' bias, not their noise, so smaller cells that fill sooner pay. Conference room, 128x128, 160 frames,
+/// `cache`, L2 against a 2048-frame `off` render, split into bias and noise by two seeds: cells of 4 pixels and 32
+/// samples, squared error 3.10e-7 (bias 1.06e-7); 2 pixels and 32 samples 2.42e-7 (0.41e-7) at 1.05x the time;
+/// 2 pixels and 16 samples 2.54e-7 (0.46e-7) at about the same time as 4 and 32; on the default scene 5.05e-7 against
+/// 3.74e-7 for the last.
+inline constexpr uint32_t kL1CacheMinSamples = 16;
+
+/// The shadow rays of an L1(q) traced at a bounce hit whose cell is not ready (in the store modes, instead of the
+/// recompute ratio's share): two such estimates make the cell ready. At the ratio's 2 rays a cell would take 8 hits
+/// to fill, each paying a recomputation and taking its noisier L1; the rays a cell gathers before it serves are the
+/// same, spent in fewer hits, so more of the hits after them are served. Measured on the conference room (128x128,
+/// 160 frames, `screen+cache`, cells of 4 pixels serving from 32 samples): the store served 80% of the bounce hits
+/// with fills of 2 rays, 87% with 4, 91% with 8, 94% with 16 and 95% with 32; L2's error fell from 1.09x `frame`'s
+/// to 1.06x, 1.04x, 1.01x and 0.99x, and the frames were 7% faster with 16 than with 2. (Cells of 2 pixels serving
+/// from 16 samples: squared error 2.54e-7 with fills of 8 rays, 2.49e-7 with 16 at 1.03x the time, 2.74e-7 with 4
+/// serving from 8.)
+inline constexpr int kL1CacheFillRays = static_cast<int>(kL1CacheMinSamples) / 2;
+
+/// The normal's dominant axis and sign, 0..5: surfaces that face apart (the two sides of a wall; a floor and the wall
+/// beside it) never share a cell.
+uint8_t normal_bucket(const Vec3& normal);
+
+uint64_t hash_of(const L1CacheKey& key);
+
+/// The generation of frame `frame`: 0 for frames 0-3, then one more per 8x frames (4-31, 32-255, 256-2047, ...). Each
+/// halves the cells' size, so that the store's blur shrinks to nothing as the frames accumulate (as frames^-1/3).
+/// Measured on the default scene and the conference room (128x128, 15 s per mode): halving per 4x frames left most
+/// cells cold for most of their generation (a cell is asked about as often per generation at every size, but must
+/// first gather its 32 samples), and `screen+cache` rendered fewer frames than `frame`; per 16x frames the cells'
+/// blur cost the conference room's L2 more than their noise saved; per 8x was best on both.
+int l1_cache_generation(uint64_t frame);
+
+struct L1CacheStats {
+  uint64_t cells = 0;    ///< cells in use
+  uint64_t bytes = 0;    ///< memory held by the shards
+  uint64_t refused = 0;  ///< records of new cells dropped because the store had reached its cap (this generation)
+  bool full = false;     ///< the cap has been reached
+};
+
+class L1Cache;
+
+/// What one pixel's L2 needs of the store in a frame: the store as the previous frame left it, the frame's grid,
+/// the pixel's jitter numbers, and where its new L1 estimates go.
+struct L1CacheAccess {
+  const L1Cache* store = nullptr;
+  const L1CacheGrid* grid = nullptr;
+  Pcg32* jitter = nullptr;
+  std::vector<L1CacheRecord>* records = nullptr;
+};
+
+class L1Cache {
+ public:
+  static constexpr int kShards = 16;
+
+  /// Empties the store and sets its cap (0: the store stays empty and refuses everything).
+  void reset(uint64_t max_bytes);
+  /// Empties the store, keeping its cap.
+  void clear();
+
+  /// The cell with this key, or null. (Here, to be inlined: it runs at most bounce hits.)
+  const L1CacheCell* find(const L1CacheKey& key, uint64_t hash) const {
+    const Shard& shard = shards_[shard_of(hash)];
+    if (shard.cells.empty()) return nullptr;
+    const size_t mask = shard.cells.size() - 1;
+    for (size_t slot = hash & mask;; slot = (slot + 1) & mask) {
+      const L1CacheCell& cell = shard.cells[slot];
+      if (cell.samples == 0) return nullptr;
+      if (cell.key == key) return &cell;
+    }
+  }
+  /// Starts loading the slot where `find` begins for this hash.
+  void prefetch(uint64_t hash) const {
+    const Shard& shard = shards_[shard_of(hash)];
+    if (!shard.cells.empty()) __builtin_prefetch(&shard.cells[hash & (shard.cells.size() - 1)]);
+  }
+  /// The shard a hash belongs to: its top four bits.
+  static size_t shard_of(uint64_t hash) { return static_cast<size_t>(hash >> 60); }
+  static_assert(kShards == 16);
+
+  /// Whether a record of a cell not yet in the store, with this hash, would be refused: its shard is as large as the
+  /// cap allows and too full to take one more. (A bounce hit whose cell is missing then traces no fill: its record
+  /// would be dropped.)
+  bool refuses_new_cell(uint64_t hash) const;
+
+  /// Adds the records, batch after batch and each batch in order; one shard per task on `pool`.
+  void merge(const std::vector<std::vector<L1CacheRecord>>& batches, ThreadPool& pool);
+
+  L1CacheStats stats() const;
+  /// The samples its cells hold, summed: a scan of every slot, for tests and tools (not per frame).
+  uint64_t samples_held() const;
+  /// The store's whole state, slot for slot, appended to a byte stream (a resumed render goes on with the same
+  /// store), and read back; reading throws ByteStreamError if the stream is cut short or impossible.
+  void write_state(ByteWriter& out) const;
+  void read_state(ByteReader& in);
+  int generation = -1;  ///< the generation whose cells the store holds (-1: none yet)
+
+ private:
+  struct Shard {
+    std::vector<L1CacheCell> cells;  ///< a power of two slots, or none
+    uint64_t used = 0;
+    uint64_t refused = 0;
+  };
+  void insert(Shard& shard, const L1CacheRecord& record);
+  /// The one rule by which insert() refuses a new cell, and refuses_new_cell() foretells it.
+  bool refuses_new_cell_in(const Shard& shard) const;
+  static void rehash(Shard& shard, size_t capacity);
+
+  std::array<Shard, kShards> shards_;
+  size_t max_cells_per_shard_ = 0;
+};
+
+}  // namespace lueur
