@@ -4,9 +4,12 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <string>
 #include <stdexcept>
 
 #include "integrator/renderer.h"
+#include "runtime/resume_state.h"
 #include "scene/default_scene.h"
 
 namespace lueur {
@@ -113,6 +116,70 @@ TEST(ExactFilm, AddingFramesMustNotSkipAPowerOfTwo) {
   EXPECT_EQ(film.checkpoints[0].frames, 4u);
   EXPECT_EQ(film.checkpoints[1].frames, 2u);
   EXPECT_THROW(film.add_exact(none, 6), std::logic_error);  // backwards
+}
+
+TEST(ExactFilm, SumsFromElsewhereThatWouldOverflowAreRefusedWhole) {
+  // A reduction or a resumed state adds sums rendered elsewhere: one that would pass 64 bits (a corrupt or hostile
+  // part) is refused, leaving the film as it was, rather than wrapping around to a sum of the other sign.
+  RenderSettings settings = small_settings();
+  Film film;
+  film.reset(settings);
+  film.unit = 0x1p-32;
+  ExactSums part = film.exact;
+  const size_t last = part[0].size() - 1;
+  film.exact[0][last] = std::numeric_limits<int64_t>::max() - 3;
+  part[0][0] = 7;     // fits
+  part[0][last] = 5;  // overflows
+  const ExactSums before = film.exact;
+  EXPECT_THROW(film.add_exact(part, 1), std::overflow_error);
+  EXPECT_EQ(film.exact, before);
+  EXPECT_EQ(film.frames, 0u);
+  part[0][last] = 3;  // exactly the largest sum
+  film.add_exact(part, 1);
+  EXPECT_EQ(film.exact[0][last], std::numeric_limits<int64_t>::max());
+  EXPECT_EQ(film.exact[0][0], 7);
+}
+
+/// A state of `source`, decoded into a fresh accumulation of the same settings.
+void decode_into_fresh(const Accumulation& source, const RenderSettings& settings) {
+  const RenderIdentity identity = {"--test"};
+  Accumulation restored;
+  restored.reset(settings);
+  decode_resume_state(encode_resume_state(identity, {&source}), identity, {&restored});
+}
+
+TEST(ResumeState, AUnitOrSnapshotsNoFilmCouldHoldAreRefused) {
+  const auto traced = default_traced();
+  RenderSettings settings = small_settings();
+  settings.width = settings.height = 8;
+  const Camera camera = make_camera(default_scene_camera(), settings.width, settings.height);
+  ThreadPool pool(1);
+  Accumulation rendered;
+  rendered.reset(settings);
+  for (int f = 0; f < 5; ++f) render_frame(*traced, camera, settings, rendered, pool);
+  ASSERT_EQ(rendered.film.checkpoints[0].frames, 4u);
+  EXPECT_NO_THROW(decode_into_fresh(rendered, settings));  // as written: frames 5, snapshots at 4, 2, 1
+
+  const auto refused = [&](const Accumulation& altered, const std::string& message) {
+    try {
+      decode_into_fresh(altered, settings);
+      ADD_FAILURE() << "accepted; expected: " << message;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  };
+  Accumulation odd_unit = rendered;
+  odd_unit.film.unit = 0.3 * rendered.film.unit;  // positive and finite, but no power of two
+  refused(odd_unit, "impossible film unit");
+  Accumulation infinite_unit = rendered;
+  infinite_unit.film.unit = std::numeric_limits<double>::infinity();
+  refused(infinite_unit, "impossible film unit");
+  Accumulation late_snapshot = rendered;
+  late_snapshot.film.checkpoints[0].frames = 8;  // past the 5 frames the film holds
+  refused(late_snapshot, "impossible frame counts");
+  Accumulation odd_snapshot = rendered;
+  odd_snapshot.film.checkpoints[1].frames = 3;  // not a power of two, not half the newest
+  refused(odd_snapshot, "impossible frame counts");
 }
 
 TEST(ExactFilm, ARenderThatKnowsItsLastFrameSkipsOnlySnapshotsItNeverReads) {

@@ -6,6 +6,8 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <stdexcept>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -88,6 +90,62 @@ TEST(ThreadPool, SeveralPoolsFromSeveralThreads) {
 #if defined(__linux__)
 /// This thread's nice value (Linux keeps one per thread).
 int current_thread_nice() { return getpriority(PRIO_PROCESS, static_cast<id_t>(gettid())); }
+
+TEST(ThreadPool, AThrowOnAWorkerReachesTheCallerAfterEveryTaskEnded) {
+  ThreadPool pool(4);
+  for (int round = 0; round < 20; ++round) {
+    std::atomic<int> running{0}, ran{0};
+    bool caught = false;
+    try {
+      pool.parallel_for(64, [&](int index, int worker) {
+        ++running;
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+        ++ran;
+        --running;
+        if (worker != 0 && index % 5 == 1) throw std::runtime_error("worker task failed");
+      });
+    } catch (const std::runtime_error& e) {
+      caught = std::string(e.what()) == "worker task failed";
+      EXPECT_EQ(running.load(), 0) << "parallel_for returned while a task still ran";
+    }
+    // A loop where only the caller's thread happened to take the throwing indices does not throw.
+    if (!caught) {
+      EXPECT_EQ(ran.load(), 64);
+    }
+  }
+  // The pool is whole afterwards.
+  std::atomic<int> visits{0};
+  pool.parallel_for(100, [&](int, int) { ++visits; });
+  EXPECT_EQ(visits.load(), 100);
+}
+
+TEST(ThreadPool, AThrowOnTheCallersThreadWaitsForTheWorkersBeforeItLeaves) {
+  ThreadPool pool(3);
+  for (int round = 0; round < 20; ++round) {
+    std::atomic<int> running{0};
+    std::atomic<bool> worker_started{false};
+    try {
+      pool.parallel_for(8, [&](int, int worker) {
+        ++running;
+        if (worker == 0) {
+          // The caller's thread throws while the workers' tasks still run.
+          while (!worker_started) std::this_thread::yield();
+          --running;
+          throw std::logic_error("caller task failed");
+        }
+        worker_started = true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        --running;
+      });
+      ADD_FAILURE() << "the caller's throw was lost";
+    } catch (const std::logic_error&) {
+      EXPECT_EQ(running.load(), 0) << "parallel_for left while a worker still ran a task of the loop";
+    }
+  }
+  std::atomic<int> visits{0};
+  pool.parallel_for(50, [&](int, int) { ++visits; });
+  EXPECT_EQ(visits.load(), 50);
+}
 
 TEST(ThreadPool, BackgroundWorkersRunBelowTheCallersPriority) {
   // The viewer's tracer runs its pool in the background so that the window's thread gets a core first.

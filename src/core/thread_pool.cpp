@@ -1,6 +1,8 @@
 // Thread pool: workers sleep on a condition variable between loops and pull indices from an atomic counter.
 #include "core/thread_pool.h"
 
+#include <utility>
+
 #if defined(__linux__)
 #include <sys/resource.h>
 #include <unistd.h>
@@ -40,8 +42,16 @@ ThreadPool::~ThreadPool() {
 }
 
 void ThreadPool::drain(int worker) {
-  for (int i = next_.fetch_add(1, std::memory_order_relaxed); i < count_; i = next_.fetch_add(1, std::memory_order_relaxed))
-    (*task_)(i, worker);
+  try {
+    for (int i = next_.fetch_add(1, std::memory_order_relaxed); i < count_;
+         i = next_.fetch_add(1, std::memory_order_relaxed))
+      (*task_)(i, worker);
+  } catch (...) {
+    // Kept for the caller, and no further index is handed out: the loop ends as soon as the tasks running finish.
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!error_) error_ = std::current_exception();
+    next_.store(count_, std::memory_order_relaxed);
+  }
 }
 
 void ThreadPool::parallel_for(int count, const std::function<void(int, int)>& task) {
@@ -59,6 +69,7 @@ void ThreadPool::parallel_for(int count, const std::function<void(int, int)>& ta
   std::unique_lock<std::mutex> lock(mutex_);
   done_.wait(lock, [this] { return busy_ == 0; });
   task_ = nullptr;
+  if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
 }
 
 void ThreadPool::worker_loop(int worker) {

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <exception>
 #include <functional>
 #include <mutex>
 #include <thread>
@@ -36,7 +37,9 @@ class ThreadPool {
   int thread_count() const { return static_cast<int>(workers_.size()) + 1; }
 
   /// Calls task(index, worker) for every index in [0, count), spread over all threads; returns when all are done.
-  /// `worker` is in [0, thread_count()) and identifies per-thread scratch storage.
+  /// `worker` is in [0, thread_count()) and identifies per-thread scratch storage. A task that throws, on any
+  /// thread, stops the loop handing out indices; parallel_for waits for the tasks still running, then rethrows the
+  /// first exception on the calling thread.
   void parallel_for(int count, const std::function<void(int index, int worker)>& task);
 
  private:
@@ -52,6 +55,7 @@ class ThreadPool {
   int busy_ = 0;
   uint64_t generation_ = 0;
   bool stopping_ = false;
+  std::exception_ptr error_;  ///< the first exception a task of the current loop threw
 };
 
 /// Hardware threads, at least 1.
