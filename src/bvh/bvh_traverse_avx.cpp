@@ -1,10 +1,32 @@
-// The traversals of bvh_traversal.h on the 8-wide tree, compiled with AVX2 (this file only; see CMakeLists.txt) and
-// called only when the CPU has AVX2 (bvh_avx2_enabled). Triangle groups are still tested four at a time by the shared
-// SSE kernel. Each lane of the 8-wide box test computes the scalar plane distances exactly and combines them
-// conservatively (see Avx): the BVH stays bit-identical to the brute-force loop.
+// The traversals of bvh_traversal.h on the 8-wide tree, compiled with AVX2 and called only when the CPU has AVX2
+// (bvh_avx2_enabled). Triangle groups are still tested four at a time by the shared SSE kernel. Each lane of the
+// 8-wide box test computes the scalar plane distances exactly and combines them conservatively (see Avx): the BVH
+// stays bit-identical to the brute-force loop.
+//
+// Only the code below the target pragma is built for AVX2, not the whole file (no -mavx2): the headers included
+// before it (the standard library, GLM, Lueur's inline helpers) keep their baseline code wherever the compiler leaves
+// an out-of-line copy, and the copy the linker keeps for the whole program never holds an AVX instruction
+// (tests/check_avx_objects.sh). What is built for AVX2 has internal linkage (bvh_traversal.h, Avx below).
 
+#include <emmintrin.h>
 #include <immintrin.h>
 
+#include <algorithm>
+#include <bit>
+#include <cstddef>
+#include <limits>
+#include <utility>
+
+#include "bvh/bvh.h"
+
+#if defined(__clang__)
+#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
+#else
+#pragma GCC push_options
+#pragma GCC target("avx2")
+#endif
+
+#include "bvh/bvh_kernels.h"
 #include "bvh/bvh_traversal.h"
 
 namespace lueur {
@@ -51,3 +73,9 @@ bool intersect_any_wide8(const Bvh& bvh, const Ray& ray, const HitFilter& filter
 }
 
 }  // namespace lueur
+
+#if defined(__clang__)
+#pragma clang attribute pop
+#else
+#pragma GCC pop_options
+#endif

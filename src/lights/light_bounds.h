@@ -51,7 +51,9 @@ struct ImportanceQuery {
 /// horizon.
 inline constexpr float kHorizonTolerance = 1e-5f;
 
-namespace light_bounds_detail {
+// Internal linkage, as bvh_traversal.h's kernels: the AVX2 build of the trees' weighing (light_lanes_avx2.cpp) and
+// the baseline one each keep their own copy, and no copy is shared between them at link time.
+namespace {
 /// cos(max(0, a - b)) for angles a, b in [0, pi] given by their cosines and sines.
 inline float cos_of_clamped_difference(float cos_a, float sin_a, float cos_b, float sin_b) {
   return cos_a >= cos_b ? 1.0f : cos_a * cos_b + sin_a * sin_b;
@@ -61,14 +63,13 @@ inline float sin_of_clamped_difference(float cos_a, float sin_a, float cos_b, fl
   return cos_a >= cos_b ? 0.0f : sin_a * cos_b - cos_a * sin_b;
 }
 inline float sine_of(float cosine) { return std::sqrt(std::max(0.0f, 1.0f - cosine * cosine)); }
-}  // namespace light_bounds_detail
+}  // namespace
 
 /// A bound on the light set `b` can send to the point: power x the best cosine at the surface x the best cosine at
 /// the emitters / distance^2 (power / radius^2 inside the sphere), and 0 where its box is wholly below the point's
 /// horizon or the point is behind every one of its emitters' planes. Positive wherever some emitter of the set can
 /// light the point (up to the tolerances above). Branch-free, so that a loop over many sets vectorises.
 [[gnu::always_inline]] inline float light_importance(const ImportanceQuery& q, const LightBounds& b) {
-  using namespace light_bounds_detail;
   const float dx = b.cx - q.px, dy = b.cy - q.py, dz = b.cz - q.pz;
   const float d2 = dx * dx + dy * dy + dz * dz;
   const float r2 = b.radius * b.radius;
