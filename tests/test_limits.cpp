@@ -2,10 +2,12 @@
 // scene files and their vertex and triangle counts), and the memory budget behind that is read correctly.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <limits>
 
 #include "core/memory_budget.h"
+#include "integrator/renderer.h"
 #include "runtime/render_memory.h"
 #include "scene/obj_loader.h"
 #include "test_support.h"
@@ -166,6 +168,45 @@ TEST(CliLimits, ImageLargerThanTheMemoryCapIsRefusedUpFront) {
       test::run_lueur("--headless --size 32x32 --frames 1 --l1-rays 1 --l2-rays 1 --out " + test::shell_quote(out),
                       "LUEUR_MEMORY_LIMIT_MB=100");
   EXPECT_EQ(ok.exit_code, 0) << ok.output;
+}
+
+TEST(SampleSequences, FramesBeforeTheyRepeatFollowTheLongestRunAFrameTakes) {
+  RenderSettings settings;  // Le 4, L1 16, L2 16 with 2 recompute rays: L2's run is 16 x 2 samples a frame
+  EXPECT_EQ(frames_before_samples_repeat(settings), (uint64_t{1} << 32) / 32);
+  settings.reuse = ReuseMode::kCache;  // a bounce may fill the store with kL1CacheFillRays
+  EXPECT_EQ(frames_before_samples_repeat(settings), (uint64_t{1} << 32) / (16 * 8));
+  // The example: 4096 bounce rays, each with a run of 64 shadow samples: 2^18 a frame, 2^14 frames.
+  settings.reuse = ReuseMode::kFrame;
+  settings.l2_rays = 4096;
+  settings.l1_rays = 64;
+  settings.recompute_ratio = 1.0f;
+  EXPECT_EQ(frames_before_samples_repeat(settings), uint64_t{16384});
+  settings.l2_rays = 3000;  // runs are powers of two
+  EXPECT_EQ(frames_before_samples_repeat(settings), uint64_t{16384});
+  settings.enabled = {true, true, false, true};  // without L2, the longest run is L1's (or AO's) own
+  settings.ao_rays = 1000;
+  EXPECT_EQ(frames_before_samples_repeat(settings), (uint64_t{1} << 32) / 1024);
+}
+
+TEST(CliLimits, ARenderWhoseSamplesWouldRepeatIsRefusedUpFront) {
+  // Frames past 2^32 samples of a pixel's sequence would repeat earlier ones: the image would stop converging.
+  const std::string dir = test::make_temp_dir("limits-samples");
+  const std::string out = dir + "/repeat.pfm";
+  const std::string rays = "--headless --size 4x4 --l2-rays 4096 --l1-rays 64 --recompute-ratio 1 --out " +
+                           test::shell_quote(out);
+  const test::CommandResult r = test::run_lueur(rays + " --frames 16385");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("lueur: error: --frames 16385: at these ray counts each pixel's sample sequence (2^32 "
+                          "samples) starts over after 16384 frames"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_FALSE(test::file_exists(out));
+  // The right side of an A/B split is held to it too.
+  const test::CommandResult split = test::run_lueur(
+      "--headless --size 4x4 --frames 1000000 --compare l2-rays=4096 --out " + test::shell_quote(out));
+  EXPECT_EQ(split.exit_code, 2) << split.output;
+  EXPECT_NE(split.output.find("(the right side of --compare)"), std::string::npos) << split.output;
 }
 
 TEST(CliLimits, LargestImageIsRefusedWhereTheMachineCannotHoldIt) {

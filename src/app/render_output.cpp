@@ -163,6 +163,15 @@ void check_writable_path(const std::string& path) {
   if (::access(dir.c_str(), W_OK) != 0) throw IoError("cannot write '" + path + "': directory is not writable");
 }
 
+void refuse_repeating_samples(const RenderSettings& settings, int frames, const std::string& side) {
+  const uint64_t most = frames_before_samples_repeat(settings);
+  if (static_cast<uint64_t>(std::max(frames, 0)) <= most) return;
+  throw UsageError("--frames " + std::to_string(frames) + ": at these ray counts" + side +
+                   " each pixel's sample sequence (2^32 samples) starts over after " + std::to_string(most) +
+                   " frames, and further frames would repeat earlier ones: ask for at most " + std::to_string(most) +
+                   " frames, or fewer rays per frame (--l2-rays, --l1-rays, --recompute-ratio)");
+}
+
 MemoryBudget reserve_render_memory(const RenderSettings& settings, const RenderSettings* right) {
   const MemoryBudget budget = available_memory();
   const uint64_t needed = render_memory_bytes(settings) + (right ? render_memory_bytes(*right) : 0);
@@ -179,6 +188,8 @@ RenderJob prepare_render_job(const AppOptions& options, bool writes_output) {
   const RenderSettings& settings = options.settings.render;
   // An A/B split renders a second film with the compared setting changed, frame for frame with the first.
   job.right = compared_settings(options.settings);
+  refuse_repeating_samples(settings, options.settings.frames, "");
+  if (job.right) refuse_repeating_samples(job.right->render, options.settings.frames, " (the right side of --compare)");
   const MemoryBudget scene_memory = reserve_render_memory(settings, job.right ? &job.right->render : nullptr);
   const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
   job.opened = open_scene(options.scene_path, scene_options_of(options.settings), aspect, scene_memory);

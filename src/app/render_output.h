@@ -66,6 +66,11 @@ void check_output_path(const std::string& path);
 /// writable. Throws IoError ("cannot write 'PATH': ...").
 void check_writable_path(const std::string& path);
 
+/// Refuses a render of `frames` frames that would pass the frames these settings can take before their sample
+/// sequences start over (frames_before_samples_repeat). `side` names an A/B split's side in the message. Throws
+/// UsageError.
+void refuse_repeating_samples(const RenderSettings& settings, int frames, const std::string& side);
+
 /// Refuses an image whose buffers the machine cannot hold, before anything is loaded or allocated; returns what
 /// is left of the budget for the scene. Throws UsageError.
 MemoryBudget reserve_render_memory(const RenderSettings& settings, const RenderSettings* right);

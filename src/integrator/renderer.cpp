@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -216,6 +217,21 @@ double film_unit(const TracedScene& traced, const Camera& camera, const RenderSe
   int exponent = 0;
   std::frexp(brightest, &exponent);  // brightest < 2^exponent
   return std::ldexp(1.0, exponent - 32);
+}
+
+uint64_t frames_before_samples_repeat(const RenderSettings& settings) {
+  const auto run = [](int count) { return std::bit_ceil(static_cast<uint64_t>(std::max(count, 1))); };
+  const std::array<bool, kLayerCount> layers = layers_needed(settings);
+  uint64_t longest = 1;  // the camera's jitter: one sample a frame
+  if (settings.pass_enabled(Pass::kLe)) longest = std::max(longest, run(settings.le_rays));
+  if (layers[static_cast<size_t>(Layer::kL1)] || settings.pass_enabled(Pass::kL2)) longest = std::max(longest, run(settings.l1_rays));
+  if (settings.pass_enabled(Pass::kAo)) longest = std::max(longest, run(settings.ao_rays));
+  if (settings.pass_enabled(Pass::kL2)) {
+    // indirect_light.cpp: each bounce's shadow rays are a run as long as the longest estimate a bounce may trace.
+    const int shadow_run = std::max(settings.recompute_rays(), uses_cache(settings.reuse) ? kL1CacheFillRays : 0);
+    longest = std::max(longest, run(settings.l2_rays) * run(shadow_run));
+  }
+  return (uint64_t{1} << 32) / longest;
 }
 
 uint64_t l1_store_bytes(const RenderSettings& settings) {

@@ -40,6 +40,13 @@ double film_unit(const TracedScene& traced, const Camera& camera, const RenderSe
 /// store, else none.
 uint64_t l1_store_bytes(const RenderSettings& settings);
 
+/// How many frames these settings can accumulate before an estimator's sample index passes 2^32, where a pixel's
+/// sample sequence starts over (core/pixel_sampler.h) and further frames would repeat earlier ones: 2^32 over the
+/// longest run of samples one frame takes of any sampler. A pass's run is its rays per frame rounded up to a power
+/// of two (first_sample_of_run); L2's recomputed L1(q) takes, per frame, a run of shadow samples for each of its
+/// bounce rays: the two counts multiply.
+uint64_t frames_before_samples_repeat(const RenderSettings& settings);
+
 /// What a render accumulates over its frames: the film's pixel sums and, beside them, the world-space L1 store that
 /// the integrator learns from the same frames (store modes only). Reset together; the resume state holds both.
 struct Accumulation {

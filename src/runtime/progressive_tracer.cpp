@@ -18,6 +18,7 @@ constexpr int kMinPreviewPixels = 8;
 
 ProgressiveTracer::ProgressiveTracer(int threads, std::shared_ptr<FrameTurns> turns)
     : pool_(threads, ThreadPriority::kBackground), turns_(std::move(turns)) {
+  stats_.frames_before_repeat = frames_before_samples_repeat(settings_);
   thread_ = std::thread([this] {
     set_current_thread_priority(ThreadPriority::kBackground);  // it works in the pool's loops too
     run();
@@ -40,6 +41,7 @@ void ProgressiveTracer::restart_locked() {
   cancel_ = true;
   ready_valid_ = false;  // a snapshot of the old accumulation must never be shown after the restart
   stats_ = TracerStats{};
+  stats_.frames_before_repeat = frames_before_samples_repeat(settings_);
   wake_.notify_all();
   frame_done_.notify_all();
 }
@@ -126,7 +128,8 @@ bool ProgressiveTracer::idle() const {
 
 bool ProgressiveTracer::can_work_locked() const {
   return !paused_ && scene_ && settings_.width > 0 && settings_.height > 0 &&
-         (frame_limit_ == 0 || stats_.frames < frame_limit_) && (time_limit_ <= 0.0 || stats_.seconds < time_limit_);
+         (frame_limit_ == 0 || stats_.frames < frame_limit_) && (time_limit_ <= 0.0 || stats_.seconds < time_limit_) &&
+         stats_.frames < stats_.frames_before_repeat;
 }
 
 void ProgressiveTracer::publish(const Film& film, uint64_t generation, int divisor, const TracerStats& stats) {

@@ -32,6 +32,9 @@ struct TracerStats {
   double l2_seconds = 0.0;
   uint64_t l2_bounce_hits = 0, l2_reused = 0, l2_cached = 0;
   L1CacheStats cache;  ///< the L1 store after the last frame
+  /// Where the accumulation stops whatever the frame limit: further frames would repeat earlier ones
+  /// (frames_before_samples_repeat).
+  uint64_t frames_before_repeat = 0;
   double mrays_per_second() const { return seconds > 0.0 ? static_cast<double>(rays) * 1e-6 / seconds : 0.0; }
 };
 
@@ -79,7 +82,7 @@ class ProgressiveTracer {
   uint64_t generation() const;
   RenderSettings settings() const;
   TracerStats stats() const;
-  bool idle() const;  ///< paused, limit reached, no scene or empty size
+  bool idle() const;  ///< paused, a limit reached (frames, time, the sample sequences), no scene or empty size
   int thread_count() const { return pool_.thread_count(); }
 
  private:
