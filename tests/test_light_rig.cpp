@@ -28,16 +28,20 @@ double irradiance_by_quadrature(const Scene& scene, const Vec3& p, const Vec3& n
     const glm::dvec3 a(scene.positions[tri.v[0]]), b(scene.positions[tri.v[1]]), c(scene.positions[tri.v[2]]);
     const glm::dvec3 e1 = b - a, e2 = c - a, cross = glm::cross(e1, e2);
     const glm::dvec3 light_normal = glm::normalize(cross);
-    const double cell_area = glm::length(cross) / (static_cast<double>(cells) * cells);
+    // The triangle cut into cells^2 similar triangles (cells (cells + 1) / 2 upright, the rest upside down), each
+    // taken at its centroid: the cells cover the triangle exactly.
+    const double cell_area = 0.5 * glm::length(cross) / (static_cast<double>(cells) * cells);
+    const auto add = [&](double u, double v) {
+      const glm::dvec3 d = a + u * e1 + v * e2 - glm::dvec3(p);
+      const double r2 = glm::dot(d, d), r = std::sqrt(r2);
+      const double cos_receiver = std::max(0.0, glm::dot(glm::dvec3(n), d) / r);
+      const double cos_light = std::max(0.0, -glm::dot(light_normal, d) / r);
+      e += scene.material_of(t).ke.r * cos_receiver * cos_light / r2 * cell_area;
+    };
     for (int i = 0; i < cells; ++i)
-      for (int j = 0; j < cells; ++j) {
-        const double u = (i + 0.5) / cells, v = (j + 0.5) / cells;
-        if (u + v > 1.0) continue;
-        const glm::dvec3 d = a + u * e1 + v * e2 - glm::dvec3(p);
-        const double r2 = glm::dot(d, d), r = std::sqrt(r2);
-        const double cos_receiver = std::max(0.0, glm::dot(glm::dvec3(n), d) / r);
-        const double cos_light = std::max(0.0, -glm::dot(light_normal, d) / r);
-        e += scene.material_of(t).ke.r * cos_receiver * cos_light / r2 * cell_area;
+      for (int j = 0; i + j < cells; ++j) {
+        add((i + 1.0 / 3.0) / cells, (j + 1.0 / 3.0) / cells);
+        if (i + j + 2 <= cells) add((i + 2.0 / 3.0) / cells, (j + 2.0 / 3.0) / cells);
       }
   }
   return e;
@@ -94,9 +98,17 @@ TEST(LightRig, OpenSceneGetsASkyThatLightsTheModelAsDesigned) {
   // Every sky triangle faces the model.
   for (uint32_t t = scene.rig_begin; t < scene.triangles.size(); ++t)
     EXPECT_LT(glm::dot(scene.geometric_normal_raw(t), scene.point(t, 1.0f / 3, 1.0f / 3)), 0.0f) << t;
-  // A white surface facing up at the centre reads about 0.85 (light_rig.h); facing the camera (+z), less.
+  // A white surface facing up at the sky's centre (light_rig.h): the top face fills the form factor of a square
+  // seen from a depth of its half-side (four corner rectangles of 1 x 1 depths), the sides' upper halves the rest of
+  // the hemisphere, each a quarter of it. Facing the camera (+z), less.
+  const auto corner_rectangle = [](double x, double y) {  // form factor to an x by y rectangle above a corner
+    const double sx = std::sqrt(1.0 + x * x), sy = std::sqrt(1.0 + y * y);
+    return (x / sx * std::atan(y / sx) + y / sy * std::atan(x / sy)) / (2.0 * kPi);
+  };
+  const double top = 4.0 * corner_rectangle(1.0, 1.0);
+  const double expected_up = 1.1 * top + (0.7 + 3 * 0.2) * (1.0 - top) / 4.0;
   const double up = irradiance_by_quadrature(scene, Vec3(0.0f), Vec3(0, 1, 0)) / kPi;
-  EXPECT_NEAR(up, 0.85, 0.1);
+  EXPECT_NEAR(up, expected_up, 1e-4 * expected_up);
   const double toward_camera = irradiance_by_quadrature(scene, Vec3(0.0f), Vec3(0, 0, 1)) / kPi;
   EXPECT_GT(toward_camera, 0.3);
   EXPECT_LT(toward_camera, up);

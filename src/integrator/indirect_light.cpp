@@ -278,7 +278,7 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
       b.pixel = -1;
       b.fills_store = false;
       if (cache) {
-        // The store is asked first (where it has a ready cell, its L1 has hundreds of samples and the least bias);
+        // The store is asked first (where it has a ready cell, its L1 has at least kL1CacheMinSamples samples, often far more, and the least bias);
         // the screen, if at all, only where it has not.
         key_for_store(scene, *cache, b);
       } else if (reuse) {

@@ -46,7 +46,8 @@ CameraSpec inside_view(const Box3& bounds, const Enclosure& room);
 /// - Outside a closed room: a sky, a closed box of 12 inward-facing emitting triangles four model radii around the
 ///   model, brightest on top (1.1), then behind the default camera (0.7, the key), at the sides and ahead (0.2:
 ///   the background the first view sees, with no seam where a wide image reaches the sides) and below (0.05): a
-///   white surface facing up reads about 0.85.
+///   white surface facing up at its centre reads 1.1 x the top's form factor (0.554) + 1.3 x a quarter of the
+///   rest, 0.754.
 /// - Inside a closed room (`room`): a panel under the ceiling above the inside point, facing down, bright enough
 ///   that the white floor below it reads 1.
 /// Far beyond float's reach (coordinates near 1e20) the rig's triangles may have no area; the caller checks.

@@ -81,23 +81,17 @@ L1CacheGrid make_l1_cache_grid(const Camera& camera, const Vec3& lower, float di
 L1CacheKey jittered_key(const L1CacheGrid& grid, const Vec3& position, const Vec3& normal, float u1, float u2);
 
 /// A cell serves look-ups once it holds this many samples of arriving light (below, L1 is traced and added to it).
-/// Chosen with cells of 2 pixels (the automatic size at 128 lines, settings.h): most of the store's error was its
-/// cells' bias, not their noise, so smaller cells that fill sooner pay. Conference room, 128x128, 160 frames,
-/// `cache`, L2 against a 2048-frame `off` render, split into bias and noise by two seeds: cells of 4 pixels and 32
-/// samples, squared error 3.10e-7 (bias 1.06e-7); 2 pixels and 32 samples 2.42e-7 (0.41e-7) at 1.05x the time;
-/// 2 pixels and 16 samples 2.54e-7 (0.46e-7) at about the same time as 4 and 32; on the default scene 5.05e-7 against
-/// 3.74e-7 for the last.
+/// Chosen with small cells (the automatic size, passes/render_settings.h) by measuring L2's error split into bias and
+/// noise on the conference room and the default scene: most of the store's error was its cells' bias, not their
+/// noise, so smaller cells that become ready sooner pay for their noisier start (the figures: BENCHMARKS.md and the
+/// commit that set this constant).
 inline constexpr uint32_t kL1CacheMinSamples = 16;
 
 /// The shadow rays of an L1(q) traced at a bounce hit whose cell is not ready (in the store modes, instead of the
 /// recompute ratio's share): two such estimates make the cell ready. At the ratio's 2 rays a cell would take 8 hits
 /// to fill, each paying a recomputation and taking its noisier L1; the rays a cell gathers before it serves are the
-/// same, spent in fewer hits, so more of the hits after them are served. Measured on the conference room (128x128,
-/// 160 frames, `screen+cache`, cells of 4 pixels serving from 32 samples): the store served 80% of the bounce hits
-/// with fills of 2 rays, 87% with 4, 91% with 8, 94% with 16 and 95% with 32; L2's error fell from 1.09x `frame`'s
-/// to 1.06x, 1.04x, 1.01x and 0.99x, and the frames were 7% faster with 16 than with 2. (Cells of 2 pixels serving
-/// from 16 samples: squared error 2.54e-7 with fills of 8 rays, 2.49e-7 with 16 at 1.03x the time, 2.74e-7 with 4
-/// serving from 8.)
+/// same, spent in fewer hits, so more of the hits after them are served. Measured on the conference room: larger
+/// fills served more of the hits and lowered L2's error, with diminishing returns past half of kL1CacheMinSamples.
 inline constexpr int kL1CacheFillRays = static_cast<int>(kL1CacheMinSamples) / 2;
 
 /// The normal's dominant axis and sign, 0..5: surfaces that face apart (the two sides of a wall; a floor and the wall
@@ -110,7 +104,7 @@ uint64_t hash_of(const L1CacheKey& key);
 /// halves the cells' size, so that the store's blur shrinks to nothing as the frames accumulate (as frames^-1/3).
 /// Measured on the default scene and the conference room (128x128, 15 s per mode): halving per 4x frames left most
 /// cells cold for most of their generation (a cell is asked about as often per generation at every size, but must
-/// first gather its 32 samples), and `screen+cache` rendered fewer frames than `frame`; per 16x frames the cells'
+/// first gather its kL1CacheMinSamples samples), and `screen+cache` rendered fewer frames than `frame`; per 16x frames the cells'
 /// blur cost the conference room's L2 more than their noise saved; per 8x was best on both.
 int l1_cache_generation(uint64_t frame);
 
