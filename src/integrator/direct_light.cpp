@@ -88,47 +88,13 @@ float place_by_solid_angle(const SurfacePoint& sp, const Vec3& origin, const Emi
   return cos_surface * static_cast<float>(seen.solid_angle / density);
 }
 
-/// Light arriving at the surface from one uniform point on emitter `light`: Le cos_p cos_l area / d^2
-/// (divided by the area pdf, not by the pmf), zero when the point is hidden or faces away. `wi` receives the
-/// direction to the point.
-Vec3 sample_emitter(const TracedScene& traced, const SurfacePoint& sp, const EmitterRecord& light, float u1, float u2,
-                    Vec3& wi, uint64_t& rays_traced) {
-  const Vec3 origin = leaving_origin(sp);
-  const float height =
-      height_above(light.normal.x, light.normal.y, light.normal.z, origin.x, origin.y, origin.z, light.p0);
-  const float to_centroid2 = centroid_distance2(light.p0.x, light.p0.y, light.p0.z, light.p1.x, light.p1.y, light.p1.z,
-                                                light.p2.x, light.p2.y, light.p2.z, origin.x, origin.y, origin.z);
-  if (by_solid_angle(light.area, height, to_centroid2)) {
-    Vec3 point(0.0f);
-    const float scale = place_by_solid_angle(sp, origin, light, u1, u2, point, wi);
-    if (!(scale > 0.0f) || !light_reaches(traced, origin, point - origin, rays_traced)) return Vec3(0.0f);
-    return light.ke * scale;
-  }
-  const Vec2 b = sample_uniform_triangle(u1, u2);
-  const Vec3 light_point = (1.0f - b.x - b.y) * light.p0 + b.x * light.p1 + b.y * light.p2;
-
-  const Vec3 to_light = light_point - sp.position;
-  const float distance2 = glm::dot(to_light, to_light);
-  if (!(distance2 > 0.0f)) return Vec3(0.0f);
-  wi = to_light * (1.0f / std::sqrt(distance2));
-
-  // Emitters shine on the side of their geometric normal only.
-  const float cos_light = -glm::dot(light.normal, wi);
-  if (!(cos_light > 0.0f)) return Vec3(0.0f);
-  // Light must arrive on the side the surface is seen from, by both normals (no leaks through the surface).
-  const float cos_surface = glm::dot(sp.shading_normal, wi);
-  if (cos_surface <= 0.0f || glm::dot(sp.geometric_normal, wi) <= 0.0f) return Vec3(0.0f);
-
-  const Vec3 shadow_origin = offset_origin(sp.position, sp.geometric_normal, wi);
-  if (!light_reaches(traced, shadow_origin, light_point - shadow_origin, rays_traced)) return Vec3(0.0f);
-  return light.ke * (cos_surface * cos_light * light.area / distance2);
-}
-
 /// A batch of light samples in plain arrays: the emitter each one chose and its numbers, then, once placed, the
-/// direction to its point and what the point sends if nothing is in the way. `place` repeats sample_emitter's
-/// arithmetic operation for operation (the same bytes), lane by lane and without branches. The lanes see one surface
-/// point (`place<false>`: L1 at a pixel's hit) or each its own (`place<true>`, after `set_point`: L1 recomputed at
-/// several bounce hits at once).
+/// direction to its point and what the point sends if nothing is in the way: a uniform point on the emitter's area,
+/// or, where the point is close to the emitter's plane or the emitter fills a large solid angle, a point placed by
+/// solid angle. `place` places every lane without branches (the compiler places several per instruction); the
+/// lanes see one surface point (`place<false>`: L1 at a pixel's hit) or each its own (`place<true>`, after
+/// `set_point`: L1 recomputed at several bounce hits at once). A single sample (sample_emitter) is a batch of one:
+/// one piece of code places every light sample Lueur takes.
 struct PlacedLightSamples {
   using Lanes = std::array<float, kSampleBatch>;
   Lanes u1, u2;                                       // the point's numbers
@@ -205,10 +171,9 @@ struct PlacedLightSamples {
   }
 
   /// Places again, by solid angle, the samples whose emitter is too close to the surface point for area sampling:
-  /// few, one at a time.
+  /// few, one at a time. `records[light[k]]` is lane k's emitter.
   template <bool kPerLane>
-  void place_close_ones(size_t count, const SurfacePoint& sp, const Vec3& shadow_origin,
-                        const std::vector<EmitterRecord>& records) {
+  void place_close_ones(size_t count, const SurfacePoint& sp, const Vec3& shadow_origin, const EmitterRecord* records) {
     for (size_t k = 0; k < count; ++k) {
       if (!by_solid_angle_[k]) continue;
       const SurfacePoint& at = kPerLane ? *point_of[k] : sp;
@@ -273,6 +238,25 @@ bool light_of_lane(const TracedScene& traced, const PlacedLightSamples& placed, 
   return true;
 }
 
+/// Light arriving at the surface from one point on emitter `light` (u1, u2 place it): Le cos_p cos_l area / d^2 by
+/// area, Le cos_p solid_angle by solid angle (divided by the pdf of the point, not by a pmf), zero where the point is
+/// hidden or cannot light the surface. `wi` receives the direction to the point. A batch of one lane.
+Vec3 sample_emitter(const TracedScene& traced, const SurfacePoint& sp, const EmitterRecord& light, float u1, float u2,
+                    Vec3& wi, uint64_t& rays_traced) {
+  PlacedLightSamples placed;
+  placed.u1[0] = u1;
+  placed.u2[0] = u2;
+  placed.gather(0, light, LightChoice{0, 1.0f});
+  const Vec3 shadow_origin = leaving_origin(sp);
+  placed.place<false>(1, sp, shadow_origin);
+  placed.place_close_ones<false>(1, sp, shadow_origin, &light);
+  if (!(placed.scale[0] > 0.0f) ||
+      !light_reaches(traced, shadow_origin, Vec3(placed.to_x[0], placed.to_y[0], placed.to_z[0]), rays_traced))
+    return Vec3(0.0f);
+  wi = Vec3(placed.wi_x[0], placed.wi_y[0], placed.wi_z[0]);
+  return light.ke * placed.scale[0];
+}
+
 /// Whether L1 at several points can share a batch's lanes: one shadow ray per sample to one chosen emitter, every
 /// point's samples in one batch.
 bool batches_points(const LightTable& table, const DirectLightOptions& options) {
@@ -318,7 +302,7 @@ Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, co
                          placed.u1.data(), placed.u2.data());
       choose_lights(table, options.strategy, sp, choice_u.data(), 0, count, placed);
       placed.place<false>(count, sp, shadow_origin);
-      placed.place_close_ones<false>(count, sp, shadow_origin, table.records);
+      placed.place_close_ones<false>(count, sp, shadow_origin, table.records.data());
       for (size_t k = 0; k < count; ++k) {
         Vec3 light(0.0f);
         if (light_of_lane<false>(traced, placed, k, shadow_origin, rays_traced, light, wi))
@@ -381,7 +365,7 @@ void estimate_direct_light_at_points(const TracedScene& traced, const SurfacePoi
     for (size_t j = 0; j < in_batch; ++j)
       choose_lights(table, options.strategy, *points[batch_points[j]], choice_u.data(), j * rays, rays, placed);
     placed.place<true>(lanes, *points[0], Vec3(0.0f));
-    placed.place_close_ones<true>(lanes, *points[0], Vec3(0.0f), table.records);
+    placed.place_close_ones<true>(lanes, *points[0], Vec3(0.0f), table.records.data());
     for (size_t j = 0; j < in_batch; ++j) {
       const size_t i = batch_points[j];
       const SurfacePoint& sp = *points[i];
