@@ -1,20 +1,40 @@
 // Pinhole camera maths.
 #include "core/camera.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace lueur {
+
+float framing_distance(const Box3& box, const Vec3& forward, const Vec3& up, float tan_half_x, float tan_half_y) {
+  const Vec3 centre = box.empty() ? Vec3(0.0f) : box.center();
+  const Vec3 right = glm::normalize(glm::cross(forward, up));
+  const Vec3 true_up = glm::cross(right, forward);
+  const float size = box.empty() ? 0.0f : box.diagonal();
+  // A corner at (x, y) across the view and z towards the eye, seen from distance d, projects to x / (d - z): it fits
+  // when d >= z + |x| / (share tan_half_x), and likewise for y. The farthest of these over the corners frames them
+  // all; the eye also stays in front of every corner.
+  float distance = 1e-3f;
+  for (int corner = 0; corner < 8 && !box.empty(); ++corner) {
+    const Vec3 p = Vec3((corner & 1) ? box.hi.x : box.lo.x, (corner & 2) ? box.hi.y : box.lo.y,
+                        (corner & 4) ? box.hi.z : box.lo.z) -
+                   centre;
+    const float x = std::abs(glm::dot(p, right)), y = std::abs(glm::dot(p, true_up)), z = -glm::dot(p, forward);
+    distance = std::max({distance, z + x / (kFramedShare * tan_half_x), z + y / (kFramedShare * tan_half_y),
+                         z + 1e-3f * size});
+  }
+  return distance;
+}
 
 CameraSpec frame_box(const Box3& box, float fovy_degrees, float aspect) {
   CameraSpec spec;
   spec.fovy_degrees = fovy_degrees;
-  const Vec3 centre = box.empty() ? Vec3(0.0f) : box.center();
-  const float radius = std::max(0.5f * box.diagonal(), 1e-3f);
-  const float half = glm::radians(fovy_degrees) * 0.5f;
-  // The bounding sphere must fit the narrower of the two fields of view.
-  const float tan_half = std::tan(half) * std::min(1.0f, aspect);
-  const float distance = radius / std::sin(std::atan(tan_half)) * 1.05f;
-  spec.target = centre;
-  spec.eye = centre + Vec3(0.0f, 0.0f, distance);
-  spec.up = Vec3(0.0f, 1.0f, 0.0f);
+  const float tan_half_y = std::tan(glm::radians(std::clamp(fovy_degrees, 0.01f, 179.0f)) * 0.5f);
+  const Vec3 forward(0.0f, 0.0f, -1.0f), up(0.0f, 1.0f, 0.0f);
+  const float distance = framing_distance(box, forward, up, tan_half_y * std::max(aspect, 1e-3f), tan_half_y);
+  spec.target = box.empty() ? Vec3(0.0f) : box.center();
+  spec.eye = spec.target - distance * forward;
+  spec.up = up;
   return spec;
 }
 

@@ -7,7 +7,16 @@
 
 namespace lueur {
 
-/// A camera looking at the bounding box from its +z side, far enough that the whole box fits the view.
+/// The share of the view's width or height that a framed box fills along its limiting axis (a margin of 4% each
+/// side), as Blender's View All frames the model: tight, with a little air.
+inline constexpr float kFramedShare = 0.92f;
+
+/// How far from the box's centre an eye looking along `forward` (unit; `up` the view's unit up) must stand for the
+/// projection of every corner of the box to fit kFramedShare of the view, whose half-angles have tangents
+/// `tan_half_x` and `tan_half_y`: the nearest such eye, so that the box fills the view along its limiting axis.
+float framing_distance(const Box3& box, const Vec3& forward, const Vec3& up, float tan_half_x, float tan_half_y);
+
+/// A camera looking at the bounding box from its +z side (up +y), as close as framing_distance allows.
 CameraSpec frame_box(const Box3& box, float fovy_degrees = 45.0f, float aspect = 1.0f);
 
 /// The ready-to-trace form: an orthonormal basis and the image-plane scale.

@@ -7,7 +7,7 @@
 namespace lueur {
 namespace {
 
-constexpr float kMaxPitchCosine = 0.995f;  // about 5.7 degrees from the poles
+constexpr float kMaxPitchCosine = 0.995f;  // the eye stays about 5.7 degrees from the poles
 
 struct Basis {
   Vec3 forward, right, up;
@@ -33,10 +33,13 @@ CameraSpec orbit(const CameraSpec& camera, float yaw, float pitch) {
   if (distance <= 0.0f) return camera;
   // Yaw about the world up (turning the view right moves the eye left around the target).
   offset = rotate(offset, world_up, -yaw);
-  // Pitch about the camera's right axis, clamped away from the poles.
+  // Pitch about the camera's right axis (a positive pitch lowers the eye), the eye's elevation clamped short of the
+  // poles: a drag past a pole stops there, and dragging back turns the view back from there.
   const Vec3 right = glm::normalize(glm::cross(-offset, world_up));
-  const Vec3 pitched = rotate(offset, right, pitch);
-  if (std::abs(glm::dot(glm::normalize(pitched), world_up)) < kMaxPitchCosine) offset = pitched;
+  const float limit = std::asin(kMaxPitchCosine);
+  const float elevation = std::asin(std::clamp(glm::dot(offset / distance, world_up), -1.0f, 1.0f));
+  const float clamped = std::clamp(elevation - pitch, -limit, std::max(-limit, limit));
+  if (clamped != elevation) offset = rotate(offset, right, elevation - clamped);
   CameraSpec out = camera;
   out.eye = camera.target + offset;
   return out;
@@ -78,13 +81,11 @@ namespace lueur {
 CameraSpec frame_bounds(const CameraSpec& camera, const Box3& box, float aspect) {
   if (box.empty()) return camera;
   const Basis b = basis_of(camera);
-  const Vec3 center = 0.5f * (box.lo + box.hi);
-  const float radius = std::max(0.5f * glm::length(box.hi - box.lo), 1e-6f);
-  const float half_fovy = 0.5f * camera.fovy_degrees * kPi / 180.0f;
-  const float half_fov = std::min(half_fovy, std::atan(std::tan(half_fovy) * std::max(aspect, 1e-3f)));
+  const float tan_half_y = std::tan(0.5f * std::clamp(camera.fovy_degrees, 0.01f, 179.0f) * kPi / 180.0f);
   CameraSpec out = camera;
-  out.target = center;
-  out.eye = center - b.forward * (radius / std::sin(half_fov));
+  out.target = box.center();
+  out.eye = out.target - b.forward * framing_distance(box, b.forward, b.up, tan_half_y * std::max(aspect, 1e-3f),
+                                                      tan_half_y);
   return out;
 }
 

@@ -24,7 +24,8 @@ CameraSpec fly(const CameraSpec& camera, float forward, float right, float up);
 
 namespace lueur {
 
-/// Keeps the view direction and field of view, and moves so that the whole box fits the view (F in the window).
+/// Keeps the view direction and field of view, and moves so that the box fills the view along its limiting axis
+/// with a small margin (core/camera.h: framing_distance), as Blender's View All does (F in the window).
 CameraSpec frame_bounds(const CameraSpec& camera, const Box3& box, float aspect);
 
 }  // namespace lueur
