@@ -77,11 +77,18 @@ TEST(Bench, SmokeRunWritesTheIssuesJsonSchema) {
   const auto& build = j["build"];
   ASSERT_EQ(build.size(), 2u);
   for (const auto& b : build) {
-    EXPECT_EQ(b.size(), 4u);
+    EXPECT_EQ(b.size(), 5u);
     EXPECT_TRUE(b["scene"].is_string());
     EXPECT_GT(b["triangles"].get<int>(), 0);
     expect_pair(b["ms"], "ms");
     expect_pair(b["bytes_per_triangle"], "bytes_per_triangle");
+    expect_pair(b["resident_bytes_per_triangle"], "resident_bytes_per_triangle");
+    // What is kept while tracing holds at least what the queries read.
+    EXPECT_GE(b["resident_bytes_per_triangle"]["lueur"].get<double>(), b["bytes_per_triangle"]["lueur"].get<double>());
+    if (embree_available()) {
+      EXPECT_GE(b["resident_bytes_per_triangle"]["embree"].get<double>(),
+                b["bytes_per_triangle"]["embree"].get<double>());
+    }
   }
 
   // Every light strategy and every reuse mode, each with an RMSE per measure.

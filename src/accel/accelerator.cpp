@@ -14,6 +14,11 @@ Accelerator build_accelerator(const std::vector<Vec3>& corners, AccelKind kind, 
   return accel;
 }
 
+size_t accelerator_resident_bytes(const Accelerator& accel) {
+  if (accel.kind == AccelKind::kEmbree) return accel.embree ? embree_resident_bytes(*accel.embree) : 0;
+  return accel.bvh.resident_bytes();
+}
+
 size_t accelerator_bytes(const Accelerator& accel) {
   if (accel.kind == AccelKind::kEmbree) return accel.embree ? embree_bytes(*accel.embree) : 0;
   return accel.bvh.traversal_bytes();

@@ -28,6 +28,9 @@ Accelerator build_accelerator(const std::vector<Vec3>& corners, AccelKind kind, 
 /// reports).
 size_t accelerator_bytes(const Accelerator& accel);
 
+/// Bytes the structure keeps in memory while rays are traced (Bvh::resident_bytes, embree_resident_bytes).
+size_t accelerator_resident_bytes(const Accelerator& accel);
+
 /// Closest hit with t in (ray.tmin, ray.tmax); both back-ends give the same Hit for a hit on the same triangle.
 inline Hit intersect_closest(const Accelerator& accel, const Ray& ray) {
   if (accel.kind == AccelKind::kEmbree) return embree_intersect_closest(*accel.embree, ray);

@@ -5,6 +5,7 @@
 #include <embree3/rtcore.h>
 
 #include <atomic>
+#include <chrono>
 #include <limits>
 #include <string>
 
@@ -21,6 +22,7 @@ struct EmbreeScene {
   std::atomic<long long> bytes{0};     ///< Embree's live allocations, from its memory monitor
   std::string error;                   ///< the first error Embree reported
   HitFilter filter;                    ///< hits to pass through (alpha cutouts), when set
+  double commit_seconds = 0.0;         ///< rtcCommitScene's wall time
 
   EmbreeScene() = default;
   EmbreeScene(const EmbreeScene&) = delete;
@@ -148,7 +150,9 @@ std::shared_ptr<const EmbreeScene> build_embree_scene(const std::vector<Vec3>& c
   rtcReleaseGeometry(geometry);
   // Only the BVH's own allocations count towards its size.
   s->bytes.store(0);
+  const auto commit_start = std::chrono::steady_clock::now();
   rtcCommitScene(s->scene);
+  s->commit_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - commit_start).count();
   if (!s->error.empty()) throw AccelError("Embree: " + s->error);
   return s;
 }
@@ -189,5 +193,11 @@ size_t embree_bytes(const EmbreeScene& scene) {
   const long long bytes = scene.bytes.load();
   return bytes > 0 ? static_cast<size_t>(bytes) : 0;
 }
+
+size_t embree_resident_bytes(const EmbreeScene& scene) {
+  return embree_bytes(scene) + scene.vertices.size() * sizeof(float) + scene.indices.size() * sizeof(uint32_t);
+}
+
+double embree_commit_seconds(const EmbreeScene& scene) { return scene.commit_seconds; }
 
 }  // namespace lueur

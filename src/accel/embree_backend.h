@@ -47,4 +47,13 @@ bool embree_intersect_any(const EmbreeScene& scene, const Ray& ray);
 /// index buffers it reads (shared with Lueur) and the triangles kept for the exact hit are not counted.
 size_t embree_bytes(const EmbreeScene& scene);
 
+/// Bytes an Embree user keeps in memory while rays are traced: Embree's own allocations and the vertex and index
+/// buffers its triangles read (Lueur's copy of each triangle for the exact hit, which Embree does not need, is left
+/// out).
+size_t embree_resident_bytes(const EmbreeScene& scene);
+
+/// The wall time of the scene's rtcCommitScene, Embree's BVH build, as its users quote it: the device, the buffers
+/// and the geometry were made beforehand.
+double embree_commit_seconds(const EmbreeScene& scene);
+
 }  // namespace lueur

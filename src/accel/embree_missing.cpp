@@ -15,5 +15,7 @@ Hit embree_intersect_closest(const EmbreeScene&, const Ray&) { return Hit{}; }
 Hit embree_intersect_closest_raw(const EmbreeScene&, const Ray&) { return Hit{}; }
 bool embree_intersect_any(const EmbreeScene&, const Ray&) { return false; }
 size_t embree_bytes(const EmbreeScene&) { return 0; }
+size_t embree_resident_bytes(const EmbreeScene&) { return 0; }
+double embree_commit_seconds(const EmbreeScene&) { return 0.0; }
 
 }  // namespace lueur

@@ -32,7 +32,7 @@ int run_headless(const AppOptions& options) {
     std::fprintf(stderr, "lueur: resuming '%s' after %llu frames\n", options.resume_path.c_str(),
                  static_cast<unsigned long long>(film.frames));
   }
-  print_render_header(options, traced, std::to_string(pool.thread_count()) + " threads");
+  print_render_header(options, job, std::to_string(pool.thread_count()) + " threads");
 
   const Clock::time_point start = Clock::now();
   Clock::time_point last_progress = start, last_checkpoint = start;

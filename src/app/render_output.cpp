@@ -192,7 +192,9 @@ RenderJob prepare_render_job(const AppOptions& options, bool writes_output) {
   if (job.right) refuse_repeating_samples(job.right->render, options.settings.frames, " (the right side of --compare)");
   const MemoryBudget scene_memory = reserve_render_memory(settings, job.right ? &job.right->render : nullptr);
   const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
+  const Clock::time_point load_start = Clock::now();
   job.opened = open_scene(options.scene_path, scene_options_of(options.settings), aspect, scene_memory);
+  job.load_seconds = seconds_since(load_start);
   if (writes_output)
     for (const std::string& w : job.opened.warnings) std::fprintf(stderr, "lueur: warning: %s\n", w.c_str());
   if (writes_output && !options.settings.camera)
@@ -216,17 +218,18 @@ RenderJob prepare_render_job(const AppOptions& options, bool writes_output) {
   return job;
 }
 
-void print_render_header(const AppOptions& options, const TracedScene& traced, const std::string& workers) {
+void print_render_header(const AppOptions& options, const RenderJob& job, const std::string& workers) {
+  const TracedScene& traced = *job.opened.traced;
   const RenderSettings& settings = options.settings.render;
   std::string textures;
   if (!traced.scene.textures.empty())
     textures = ", " + std::to_string(traced.scene.textures.size()) +
                (traced.scene.textures.size() == 1 ? " texture (" : " textures (") +
                format_bytes(traced.scene.texture_bytes()) + (traced.scene.has_cutouts() ? ", with cutouts)" : ")");
-  std::fprintf(stderr, "lueur: %s, %zu triangles, %zu emitters%s, %dx%d, %d frames, %s, accel %s\n",
+  std::fprintf(stderr, "lueur: %s, %zu triangles, %zu emitters%s, %dx%d, %d frames, %s, accel %s, loaded in %.3f s\n",
                traced.scene.name.c_str(), traced.scene.triangles.size(), traced.lights.size(), textures.c_str(),
                settings.width, settings.height, options.settings.frames, workers.c_str(),
-               std::string(enum_name(kAccelKindNames, options.settings.accel)).c_str());
+               std::string(enum_name(kAccelKindNames, options.settings.accel)).c_str(), job.load_seconds);
 }
 
 void record_noise_history(const AppOptions& options, const Film& film, double elapsed, RunFigures& figures) {

@@ -48,6 +48,7 @@ struct RenderJob {
   Accumulation left;
   std::optional<Settings> right;  ///< --compare: the settings of the split's right side
   Accumulation right_side;
+  double load_seconds = 0.0;  ///< reading the scene and building its accelerator (open_scene)
   std::vector<Accumulation*> sides() {
     return right ? std::vector<Accumulation*>{&left, &right_side} : std::vector<Accumulation*>{&left};
   }
@@ -75,8 +76,9 @@ void refuse_repeating_samples(const RenderSettings& settings, int frames, const 
 /// is left of the budget for the scene. Throws UsageError.
 MemoryBudget reserve_render_memory(const RenderSettings& settings, const RenderSettings* right);
 
-/// The header line: scene, triangles, emitters, textures, size, frames, who renders (`workers`), back-end.
-void print_render_header(const AppOptions& options, const TracedScene& traced, const std::string& workers);
+/// The header line: scene, triangles, emitters, textures, size, frames, who renders (`workers`), back-end, and the
+/// seconds the scene took to read and prepare.
+void print_render_header(const AppOptions& options, const RenderJob& job, const std::string& workers);
 
 /// Appends the estimate at this power of two of the frames to `figures.noise_history` (only for a --ui screenshot).
 void record_noise_history(const AppOptions& options, const Film& film, double elapsed, RunFigures& figures);

@@ -217,11 +217,14 @@ int run(const BenchOptions& o) {
         builds.push_back(Json{{"scene", b.name},
                               {"triangles", triangles},
                               {"ms", pair(build.lueur_ms, build.embree_ms)},
-                              {"bytes_per_triangle", pair(build.lueur_bytes, build.embree_bytes)}});
-        std::fprintf(stderr, "lueur-bench: %s build: lueur %.1f ms %.1f B/tri", b.name.c_str(), build.lueur_ms,
-                     build.lueur_bytes);
+                              {"bytes_per_triangle", pair(build.lueur_bytes, build.embree_bytes)},
+                              {"resident_bytes_per_triangle",
+                               pair(build.lueur_resident_bytes, build.embree_resident_bytes)}});
+        std::fprintf(stderr, "lueur-bench: %s build: lueur %.1f ms %.1f B/tri (%.1f resident)", b.name.c_str(),
+                     build.lueur_ms, build.lueur_bytes, build.lueur_resident_bytes);
         if (build.embree_ms)
-          std::fprintf(stderr, ", embree %.1f ms %.1f B/tri", *build.embree_ms, build.embree_bytes.value_or(0.0));
+          std::fprintf(stderr, ", embree %.1f ms (rtcCommitScene) %.1f B/tri (%.1f resident)", *build.embree_ms,
+                       build.embree_bytes.value_or(0.0), build.embree_resident_bytes.value_or(0.0));
         std::fprintf(stderr, "\n");
       }
       if (!need_rays) continue;

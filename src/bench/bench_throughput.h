@@ -35,11 +35,16 @@ Throughput measure_throughput(const std::vector<Ray>& rays, Query query, const B
 /// The median of `values` (the mean of the middle two for an even count; 0 for none).
 double median(std::vector<double> values);
 
+/// Build time and memory of both back-ends. Lueur's time runs from the corner array to the finished wide tree
+/// (triangle preparation, BVH2 build, reinsertion, collapse); Embree's is rtcCommitScene alone, on a device, buffers
+/// and geometry made beforehand, as Embree's users quote it.
 struct BuildFigures {
   double lueur_ms = 0.0;
   std::optional<double> embree_ms;
-  double lueur_bytes = 0.0;  ///< bytes per input triangle
+  double lueur_bytes = 0.0;  ///< bytes per input triangle that the queries read (accelerator_bytes)
   std::optional<double> embree_bytes;
+  double lueur_resident_bytes = 0.0;  ///< bytes per input triangle kept while tracing (accelerator_resident_bytes)
+  std::optional<double> embree_resident_bytes;
 };
 
 /// Builds both back-ends `repeats` times, alternating, and keeps the fastest build of each; `bvh` and `embree`

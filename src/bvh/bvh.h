@@ -80,6 +80,11 @@ struct Bvh {
     return wide_nodes.size() * sizeof(BvhWideNode) + wide8_nodes.size() * sizeof(BvhWideNode8) +
            groups.size() * sizeof(BvhTriangleGroup);
   }
+  /// Bytes the tree keeps in memory while rays are traced: what the queries read, and the BVH2 and its triangles
+  /// kept beside them as the build's record.
+  size_t resident_bytes() const {
+    return traversal_bytes() + nodes.size() * sizeof(BvhNode) + triangles.size() * sizeof(BvhTriangle);
+  }
 };
 
 /// Collapses `bvh.nodes` into `bvh.wide8_nodes` (when bvh_avx2_enabled) or `bvh.wide_nodes`, and `bvh.groups`

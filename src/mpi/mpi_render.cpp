@@ -214,7 +214,7 @@ int run_mpi_render(const MpiWorld& world, int argc, char** argv) {
     if (done > 0)
       std::fprintf(stderr, "lueur: resuming '%s' after %llu frames\n", options.resume_path.c_str(),
                    static_cast<unsigned long long>(done));
-    print_render_header(options, traced,
+    print_render_header(options, job,
                         std::to_string(world.size) + (world.size == 1 ? " rank" : " ranks") + " x " +
                             std::to_string(threads) + (threads == 1 ? " thread" : " threads"));
   }
