@@ -86,6 +86,44 @@ TEST(SceneLoader, MaterialsAndEmitters) {
   EXPECT_FALSE(has_warning(loaded, "no emitter")) << all_warnings(loaded);
 }
 
+TEST(SceneLoader, TheRayTracedIlluminationModelsMakeMirrorsAndGlass) {
+  const std::string dir = test::make_temp_dir("illum");
+  write_text(dir, "m.mtl",
+             "newmtl plastic\nKd 0.5 0.5 0.5\nKs 0.2 0.2 0.2\nNs 20\nNi 1.5\nTf 0.3 0.3 0.3\nillum 2\n"
+             "newmtl mirror3\nKs 0.9 0.8 0.7\nillum 3\n"
+             "newmtl mirror5\nKd 0.01\nKs 0.95\nNs 1000\nillum 5\n"
+             "newmtl glass4\nillum 4\n"  // no Ni: 1.5; no Tf (tinyobjloader: 0): clear
+             "newmtl glass6\nNi 1.33\nTf 0.5\nillum 6\n"
+             "newmtl glass7\nNi 2.5\nTf 0.1 0.2 0.3\nKs 0.3\nNs 200\nillum 7\n"
+             "newmtl highlight8\nKd 0.4\nillum 8\n");
+  std::string obj = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  for (const char* name : {"plastic", "mirror3", "mirror5", "glass4", "glass6", "glass7", "highlight8"})
+    obj += std::string("usemtl ") + name + "\nf 1 2 3\n";
+  const LoadedScene loaded = load_obj(write_text(dir, "m.obj", obj));
+  const std::vector<Material>& m = loaded.scene.materials;
+  ASSERT_GE(m.size(), 7u);  // and the light rig's, as the file has no emitter
+  EXPECT_EQ(m[0].surface, SurfaceKind::kBrdf);
+  EXPECT_TRUE(m[0].has_specular());
+  EXPECT_EQ(m[0].tf, Vec3(1.0f)) << "only glass reads Tf";
+  EXPECT_EQ(m[1].surface, SurfaceKind::kMirror);
+  EXPECT_EQ(m[1].ks, Vec3(0.9f, 0.8f, 0.7f));
+  EXPECT_FALSE(m[1].has_specular()) << "a mirror's Ks is its reflectance, not a Blinn-Phong lobe";
+  EXPECT_EQ(m[2].surface, SurfaceKind::kMirror);
+  EXPECT_EQ(m[2].kd, Vec3(0.01f));
+  EXPECT_EQ(m[3].surface, SurfaceKind::kGlass);
+  EXPECT_EQ(m[3].ior, 1.5f);
+  EXPECT_EQ(m[3].tf, Vec3(1.0f));
+  EXPECT_EQ(m[4].surface, SurfaceKind::kGlass);
+  EXPECT_EQ(m[4].ior, 1.33f);
+  EXPECT_EQ(m[4].tf, Vec3(0.5f)) << "one Tf value is grey";
+  EXPECT_EQ(m[5].surface, SurfaceKind::kGlass);
+  EXPECT_EQ(m[5].ior, 2.5f);
+  EXPECT_EQ(m[5].tf, Vec3(0.1f, 0.2f, 0.3f));
+  EXPECT_FALSE(m[5].has_specular()) << "Ks and Ns do not apply to glass";
+  EXPECT_EQ(m[6].surface, SurfaceKind::kBrdf);
+  EXPECT_TRUE(all_warnings(loaded).find("illum value") == std::string::npos) << all_warnings(loaded);
+}
+
 TEST(SceneLoader, FileNormalsAreUsedAndNormalised) {
   const LoadedScene loaded = load_obj_from_text(kTriangle +
                                                     "vn 0 0 2\nvn 1 0 1\nvn 0 0 0\n"

@@ -29,6 +29,14 @@ Vec3 clamp_value(const Vec3& v, float maximum) {
   return Vec3(clamp_value(v.x, maximum), clamp_value(v.y, maximum), clamp_value(v.z, maximum));
 }
 
+/// The MTL illumination models that ray-trace: 3 and 5 reflect (a mirror), 4, 6 and 7 also refract (glass). The rest
+/// (0-2, 8-10: colour, ambient, highlight, and reflection without ray tracing) keep the BRDF.
+SurfaceKind surface_of_illum(int illum) {
+  if (illum == 3 || illum == 5) return SurfaceKind::kMirror;
+  if (illum == 4 || illum == 6 || illum == 7) return SurfaceKind::kGlass;
+  return SurfaceKind::kBrdf;
+}
+
 /// Runs tinyobjloader on the validated text (triangulating); its first error line becomes a SceneError.
 tinyobj::ObjReader parse_obj(const std::string& obj_text, const std::string& mtl_text, const std::string& label) {
   tinyobj::ObjReaderConfig config;
@@ -127,13 +135,20 @@ MaterialTable gather_materials(const std::vector<tinyobj::material_t>& file_mate
     material.ks = Vec3(m.specular[0], m.specular[1], m.specular[2]);
     material.ke = Vec3(m.emission[0], m.emission[1], m.emission[2]);
     material.ns = m.shininess;
+    material.tf = Vec3(m.transmittance[0], m.transmittance[1], m.transmittance[2]);
     material.diffuse_map = m.diffuse_texname;
     material.alpha_map = m.alpha_texname;
+    int illum = known_illum(m.illum) ? m.illum : kDefaultIllum;
+    bool has_ni = true, has_tf = true;
     if (entries_match) {
       const MtlEntry& entry = mtl_entries[named];
       if (entry.single_value[0]) material.kd = Vec3(material.kd.r);
       if (entry.single_value[1]) material.ks = Vec3(material.ks.r);
       if (entry.single_value[2]) material.ke = Vec3(material.ke.r);
+      if (entry.single_value[3]) material.tf = Vec3(material.tf.r);
+      illum = entry.illum;
+      has_ni = entry.has_ni;
+      has_tf = entry.has_tf;
       // No Ns: exponent 0, the lobe the report's mix turns into Lambert (so a closed box of albedo rho still
       // reflects rho of the light, whatever K), where tinyobjloader's default of 1 made a faint lobe that loses
       // energy (L1 1% and L2 3% low in a closed emitting box at K = 0.7).
@@ -145,6 +160,15 @@ MaterialTable gather_materials(const std::vector<tinyobj::material_t>& file_mate
     material.ks = clamp_value(material.ks, mtl_maximum("Ks"));
     material.ke = clamp_value(material.ke, mtl_maximum("Ke"));
     material.ns = clamp_value(material.ns, mtl_maximum("Ns"));
+    material.surface = surface_of_illum(illum);
+    if (material.surface == SurfaceKind::kGlass) {
+      // Only glass reads Ni and Tf (most MTL files write them for every material, as exporters' defaults).
+      const float ior = static_cast<float>(m.ior);
+      material.ior = has_ni && std::isfinite(ior) && ior > 0.0f ? std::min(ior, mtl_maximum("Ni")) : kDefaultIor;
+      material.tf = has_tf ? clamp_value(material.tf, mtl_maximum("Tf")) : Vec3(1.0f);  // no filter: clear
+    } else {
+      material.tf = Vec3(1.0f);
+    }
     table.remap[i] = static_cast<int64_t>(scene.materials.size());
     table.known_names.insert(m.name);
     scene.materials.push_back(material);

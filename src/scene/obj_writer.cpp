@@ -1,5 +1,5 @@
 // OBJ + MTL export: positions, shading normals, texture coordinates, faces grouped into runs of one material, and
-// Kd/Ks/Ns/Ke materials with their texture maps.
+// Kd/Ks/Ns/Ke materials (and a mirror's or glass's illum, Ni and Tf) with their texture maps.
 // Depends on core (atomic writes) and scene only; never on tinyobjloader, GL or the render passes.
 #include "scene/obj_writer.h"
 
@@ -76,6 +76,14 @@ void write_obj(const Scene& scene, const std::string& obj_path) {
     const int n = std::snprintf(buffer, sizeof buffer, "Ns %.9g\n", static_cast<double>(m.ns));
     mtl.append(buffer, static_cast<size_t>(n));
     append_format(mtl, "Ke %.9g %.9g %.9g\n", m.ke.r, m.ke.g, m.ke.b);
+    // A mirror or glass as the models that read back as one (illum 5 and 7); the BRDF's default (2) is not written.
+    if (m.surface == SurfaceKind::kMirror) mtl += "illum 5\n";
+    if (m.surface == SurfaceKind::kGlass) {
+      mtl += "illum 7\n";
+      const int length = std::snprintf(buffer, sizeof buffer, "Ni %.9g\n", static_cast<double>(m.ior));
+      mtl.append(buffer, static_cast<size_t>(length));
+      append_format(mtl, "Tf %.9g %.9g %.9g\n", m.tf.r, m.tf.g, m.tf.b);
+    }
     // The maps as the scene's MTL named them: relative to its folder, so they are found when the export lies there.
     if (!m.diffuse_map.empty()) mtl += "map_Kd " + m.diffuse_map + "\n";
     if (!m.alpha_map.empty()) mtl += "map_d " + m.alpha_map + "\n";

@@ -10,13 +10,22 @@
 
 namespace lueur {
 
-/// An OBJ/MTL material reduced to what the Blinn-Phong passes need.
+/// How a material scatters light, from the MTL's `illum`: today's BRDF (Lambert / Blinn-Phong / the report's mix;
+/// illum 0-2 and 8-10), a perfect mirror of reflectance Ks (illum 3 and 5), or smooth glass of index Ni whose
+/// transmitted light Tf tints (illum 4, 6 and 7). The mirror and the glass may have a Lambert base of albedo Kd
+/// (integrator/specular.h shares the reflectance out so that the sum never exceeds 1).
+enum class SurfaceKind : uint8_t { kBrdf = 0, kMirror = 1, kGlass = 2 };
+
+/// An OBJ/MTL material reduced to what the passes need.
 struct Material {
   std::string name = "default";
   Vec3 kd{0.5f};    ///< diffuse albedo
   Vec3 ks{0.0f};    ///< specular albedo; zero selects the report's Blinn-Phong mix with K
   float ns = 0.0f;  ///< Blinn-Phong exponent
   Vec3 ke{0.0f};    ///< emitted radiance; any positive channel makes the material an area light
+  SurfaceKind surface = SurfaceKind::kBrdf;
+  float ior = 1.5f;  ///< glass: the index of refraction (Ni) inside, against 1 outside (the side the winding faces)
+  Vec3 tf{1.0f};     ///< glass: the transmission filter (Tf) that tints the light passing through
   /// Index in Scene::textures of the colour map that replaces kd (map_Kd), or -1.
   int32_t diffuse_texture = -1;
   /// Index in Scene::textures of the cutout mask (map_d): where it covers less than half, the surface is a hole.
@@ -24,7 +33,10 @@ struct Material {
   std::string diffuse_map, alpha_map;  ///< the MTL's map_Kd and map_d file names, as written ("" when absent)
 
   bool emissive() const { return ke.r > 0.0f || ke.g > 0.0f || ke.b > 0.0f; }
-  bool has_specular() const { return ks.r > 0.0f || ks.g > 0.0f || ks.b > 0.0f; }
+  /// Whether the BRDF has a Blinn-Phong lobe of albedo Ks (a mirror's Ks is its reflectance instead).
+  bool has_specular() const { return surface == SurfaceKind::kBrdf && (ks.r > 0.0f || ks.g > 0.0f || ks.b > 0.0f); }
+  /// Whether rays meeting it continue along a perfectly specular direction: a mirror or glass.
+  bool is_specular() const { return surface != SurfaceKind::kBrdf; }
 };
 
 inline constexpr uint32_t kNoNormal = 0xffffffffu;

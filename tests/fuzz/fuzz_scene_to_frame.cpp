@@ -80,12 +80,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 
   RenderSettings settings;
   settings.width = settings.height = 16;
-  settings.enabled = {true, true, true, true};
+  settings.enabled = {true, true, true, true, true};
   settings.lights = static_cast<LightStrategy>((bits >> 1) % 4);
   settings.reuse = static_cast<ReuseMode>((bits >> 3) % 3);
   settings.reuse_diffuse_only = ((bits >> 5) & 1) != 0;
   settings.blinn_k = static_cast<float>((bits >> 6) % 5) * 0.25f;
-  settings.l1_rays = settings.l2_rays = settings.ao_rays = 2;
+  settings.l1_rays = settings.l2_rays = settings.ao_rays = settings.ln_rays = 2;
+  settings.max_bounces = 1 + static_cast<int>((bits >> 9) % 8);  // the camera's mirrors and glass, and ln's paths
   settings.seed = bits >> 32;
 
   const std::shared_ptr<const TracedScene> traced = prepare_scene(std::move(loaded.scene));
