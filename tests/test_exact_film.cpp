@@ -27,7 +27,8 @@ RenderSettings small_settings() {
   settings.height = 29;
   settings.l1_rays = 2;
   settings.l2_rays = 2;
-  settings.enabled = {true, true, true, true};
+  settings.ln_rays = 1;
+  settings.enabled = {true, true, true, true, true};
   return settings;
 }
 

@@ -23,7 +23,7 @@ Settings unusual_settings() {
   s.up = Vec3(0.1f, 1.0f, 0.0f);
   s.render.width = 24;
   s.render.height = 18;
-  s.render.enabled = {true, true, false, true};
+  s.render.enabled = {true, true, false, true, true};
   s.render.lights = LightStrategy::kPower;
   s.render.le_rays = 2;
   s.render.l1_rays = 3;
@@ -35,6 +35,8 @@ Settings unusual_settings() {
   s.render.cache_mb = 96;
   s.render.reuse_diffuse_only = true;
   s.render.ao_rays = 2;
+  s.render.ln_rays = 3;
+  s.render.max_bounces = 5;
   s.render.ao_radius = 123.456f;
   s.render.seed = 18446744073709551557ull;  // beyond 2^53: must survive text and JSON exactly
   s.render.sampler = SamplerKind::kIndependent;
@@ -266,7 +268,7 @@ TEST(SettingTable, ViewFilesFromBeforeTheTableStillLoad) {
   expected.render.l2_rays = 2;
   expected.render.lights = LightStrategy::kUniform;
   expected.render.seed = 11;
-  expected.weights = {1.0f, 0.8f, 0.3f, 1.0f};
+  expected.weights = {1.0f, 0.8f, 0.3f, 1.0f, 1.0f};  // the file has no ln: its weight stays the default
   expected.display = {0.5f, ToneMap::kReinhard};
   expected.frames = 3;
   EXPECT_EQ(v, expected) << view_to_json(v);

@@ -11,8 +11,9 @@ a long image of its own with another seed, whose relMSE against Cycles' referenc
 reach (what still differs between the renderers, and the reference's own noise); Lueur's images are measured
 against it too.
 
-Both renderers see the same pure-Lambert copy of the scene (Ks dropped from its MTL), Le + L1 + L2 at weight 1,
-one bounce, a box filter and no denoising (see render_cycles.py). Needs `blender` (Debian's package); the build and
+Both renderers see the same copy of the scene (Ks dropped from its BRDF materials, so that they are Lambertian;
+mirrors and glass kept), every pass at weight 1, `--bounces N` scattering events at most (1 by default: Le + L1 + L2;
+more adds Lueur's ln and Cycles' further bounces), a box filter and no denoising (see render_cycles.py). Needs `blender` (Debian's package); the build and
 the tests never do. Usage: scripts/compare-cycles.sh [options] (--help lists them).
 """
 import argparse
@@ -31,6 +32,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 # name -> (the scene, or "default" for Lueur's embedded one; its camera "ex ey ez tx ty tz fovy")
 PRESETS = {
     "cornell-original": ("{shared}/scenes/cornell-original/CornellBox-Original.obj", "0 1 3.9 0 1 0 40"),
+    "cornell-sphere": ("{shared}/scenes/cornell-sphere/CornellBox-Sphere.obj", "0 1 3.9 0 1 0 40"),
     "default": ("default", "278 273 -800 278 273 0 39.3077"),
 }
 
@@ -65,8 +67,26 @@ def run(command, what):
     return result.stdout
 
 
+def without_highlights(lines):
+    """An MTL's lines less the Ks of its BRDF materials (both renderers then see Kd only there); a mirror's Ks
+    (illum 3 or 5) is its reflectance and stays."""
+    materials, current = [], []
+    for line in lines:
+        if line.strip().startswith("newmtl"):
+            materials.append(current)
+            current = []
+        current.append(line)
+    materials.append(current)
+    kept = []
+    for material in materials:
+        illum = [line.split()[1] for line in material if re.match(r"\s*illum\s+\S", line)]
+        mirror = bool(illum) and illum[-1] in ("3", "5")
+        kept += [line for line in material if mirror or not re.match(r"\s*Ks\s", line)]
+    return kept
+
+
 def lambert_copy(obj_path, folder):
-    """Copies the OBJ and its MTL libraries into `folder`, the MTLs without Ks (both renderers then see Kd only)."""
+    """Copies the OBJ and its MTL libraries into `folder`, the MTLs without the Ks of their BRDF materials."""
     os.makedirs(folder, exist_ok=True)
     source_folder = os.path.dirname(os.path.abspath(obj_path))
     target = os.path.join(folder, os.path.basename(obj_path))
@@ -78,7 +98,7 @@ def lambert_copy(obj_path, folder):
         if not os.path.isfile(source):
             continue
         with open(source, encoding="utf-8", errors="replace") as f:
-            kept = [line for line in f if not re.match(r"\s*Ks\s", line)]
+            kept = without_highlights(f.readlines())
         with open(os.path.join(folder, library), "w", encoding="utf-8") as f:
             f.writelines(kept)
     return target
@@ -87,7 +107,8 @@ def lambert_copy(obj_path, folder):
 def cycles_render(args, obj, spp, seed, out):
     output = run([args.blender, "-b", "--factory-startup", "-P", os.path.join(HERE, "render_cycles.py"), "--",
                   "--obj", obj, "--out", out, "--camera", args.camera, "--size", args.size, "--spp", str(spp),
-                  "--seed", str(seed), "--threads", str(args.threads)], "Cycles at %d samples" % spp)
+                  "--seed", str(seed), "--threads", str(args.threads), "--bounces", str(args.bounces)],
+                 "Cycles at %d samples" % spp)
     match = re.search(r"cycles_render_seconds ([0-9.]+)", output)
     if not match:
         raise SystemExit("compare: Cycles printed no render time")
@@ -96,8 +117,10 @@ def cycles_render(args, obj, spp, seed, out):
 
 def lueur_render(args, obj, out, seconds=0.0, frames=1000000, seed=None):
     """Renders with Lueur; returns (frames, seconds used: loading and BVH build plus tracing, loading seconds)."""
+    passes = "le,l1,l2" + (",ln" if args.bounces > 1 else "")
     command = [args.lueur, obj, "--headless", "--out", out, "--camera", args.camera, "--size", args.size,
-               "--passes", "le,l1,l2", "--weights", "le=1,l1=1,l2=1", "--blinn-k", "1", "--smooth-normals", "off",
+               "--passes", passes, "--weights", "le=1,l1=1,l2=1,ln=1", "--max-bounces", str(args.bounces),
+               "--blinn-k", "1", "--smooth-normals", "off",
                "--frames", str(frames), "--seed", str(args.seed if seed is None else seed)]
     if seconds > 0.0:
         command += ["--time-limit", "%.4f" % seconds]
@@ -123,6 +146,8 @@ def parse_arguments():
     parser.add_argument("--lueur-reference-frames", type=int, default=1024,
                         help="frames of Lueur's own long render, with another seed (0: none)")
     parser.add_argument("--threads", type=int, default=0, help="both renderers (0: all cores)")
+    parser.add_argument("--bounces", type=int, default=1,
+                        help="scattering events at most, both renderers (1: Le + L1 + L2; more: Lueur's ln too)")
     parser.add_argument("--seed", type=int, default=1, help="Lueur's seed")
     parser.add_argument("--lueur", default=os.environ.get("LUEUR_EXE", "lueur"))
     parser.add_argument("--blender", default="blender")
@@ -160,7 +185,7 @@ def main():
         for name in sorted(os.listdir(os.path.dirname(obj))):
             with open(os.path.join(os.path.dirname(obj), name), "rb") as f:
                 key.update(name.encode() + f.read())
-        key.update(("%s|%s|%d" % (args.camera, args.size, args.reference_spp)).encode())
+        key.update(("%s|%s|%d|%d" % (args.camera, args.size, args.reference_spp, args.bounces)).encode())
         with open(os.path.join(HERE, "render_cycles.py"), "rb") as f:
             key.update(f.read())
         os.makedirs(args.cache, exist_ok=True)
@@ -210,8 +235,8 @@ def main():
             return " (%.6f)" % entry["relmse_own"] if entry["relmse_own"] is not None else ""
 
         print()
-        print("%s, %s, camera \"%s\"; relMSE against Cycles at %d samples (in brackets: against Lueur's own reference)"
-              % (args.scene, args.size, args.camera, args.reference_spp))
+        print("%s, %s, camera \"%s\", %d bounces; relMSE against Cycles at %d samples (in brackets: against Lueur's "
+              "own reference)" % (args.scene, args.size, args.camera, args.bounces, args.reference_spp))
         print("Lueur's times: loading and BVH build plus tracing, as used (the last frame whole)")
         print("| Cycles | time | relMSE | Lueur, same time | time | relMSE | Lueur, half the time | time | relMSE "
               "| half reaches |")
@@ -227,7 +252,7 @@ def main():
         if args.json:
             partial = args.json + ".partial"
             with open(partial, "w") as f:
-                json.dump({"scene": args.scene, "size": args.size, "camera": args.camera,
+                json.dump({"scene": args.scene, "size": args.size, "camera": args.camera, "bounces": args.bounces,
                            "reference_spp": args.reference_spp, "rows": rows, "lueur_reference": own}, f, indent=2)
             os.replace(partial, args.json)
     finally:

@@ -1,14 +1,19 @@
 # Blender side of scripts/compare-cycles.sh: renders an OBJ + MTL scene with Cycles the way Lueur renders it with
-# `--blinn-k 1 --smooth-normals off` and every pass at weight 1 (Le + L1 + L2), and writes a linear PFM.
+# `--blinn-k 1 --smooth-normals off` and every pass at weight 1 (Le + L1 + L2, and ln beyond one bounce), and writes
+# a linear PFM.
 #
 #   blender -b --factory-startup -P render_cycles.py -- --obj S.obj --out I.pfm --camera "ex ey ez tx ty tz fovy" \
 #       --size 256x256 --spp 64 [--seed 1] [--up "0 1 0"] [--threads 0] [--bounces 1]
 #
 # What "the same" means here:
-#  - materials are Lambertian with the MTL's Kd; Ks is ignored (the driver hands both renderers Ks-free copies);
+#  - materials are Lambertian with the MTL's Kd, Ks ignored (the driver drops it from the BRDF materials' copies);
+#    the ray-traced illumination models as Lueur reads them (README, "Materials"): illum 3 and 5 a sharp mirror of
+#    reflectance Ks, illum 4, 6 and 7 smooth glass of index Ni (1.5 when missing) whose Fresnel reflection is white
+#    and whose refraction Tf tints, each beside a Lambert base of the MTL's Kd, shared out as Lueur shares them;
 #  - an emitter (Ke > 0) shines from the side its vertices wind counter-clockwise and is black from behind, as in
 #    Lueur, and still reflects light with its Kd;
-#  - one bounce: paths camera - p - light (L1) and camera - p - q - light (L2), plus what the camera sees (Le);
+#  - `--bounces N` scattering events at most, of every kind (Lueur's --max-bounces N); caustics on, no glossy blur;
+#    1 is Le + L1 + L2: paths camera - p - light and camera - p - q - light, plus what the camera sees;
 #  - a box filter one pixel wide (Lueur's uniform jitter), no denoising, no adaptive sampling, no clamping, a black
 #    world, the Standard view transform and linear 32-bit output.
 # Prints "cycles_render_seconds T": the time of the render call alone (scene sync, Cycles' BVH and the samples),
@@ -34,12 +39,17 @@ def parse_arguments():
     parser.add_argument("--spp", type=int, required=True)
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--threads", type=int, default=0, help="0: all")
-    parser.add_argument("--bounces", type=int, choices=(0, 1), default=1, help="0: Le + L1 only; 1: Le + L1 + L2")
+    parser.add_argument("--bounces", type=int, default=1, help="0: Le + L1 only; 1: Le + L1 + L2; N: every bounce up to N")
     return parser.parse_args(sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else [])
 
 
+def default_material():
+    return {"Kd": (0.8, 0.8, 0.8), "Ke": (0.0, 0.0, 0.0), "Ks": (0.0, 0.0, 0.0), "Tf": (1.0, 1.0, 1.0), "Ni": 1.5,
+            "illum": 2}
+
+
 def read_materials(mtl_path):
-    """name -> (Kd, Ke); a missing file gives none (every face then takes Lueur's default grey)."""
+    """name -> its Kd, Ke, Ks, Tf, Ni and illum; a missing file gives none (every face then takes Lueur's grey)."""
     materials, name = {}, None
     if not os.path.isfile(mtl_path):
         return materials
@@ -50,9 +60,16 @@ def read_materials(mtl_path):
                 continue
             if words[0] == "newmtl" and len(words) > 1:
                 name = words[1]
-                materials[name] = [(0.8, 0.8, 0.8), (0.0, 0.0, 0.0)]
-            elif name is not None and words[0] in ("Kd", "Ke") and len(words) >= 4:
-                materials[name][0 if words[0] == "Kd" else 1] = tuple(float(w) for w in words[1:4])
+                materials[name] = default_material()
+            elif name is None or len(words) < 2:
+                continue
+            elif words[0] in ("Kd", "Ke", "Ks", "Tf"):
+                values = [float(w) for w in words[1:4]]
+                materials[name][words[0]] = tuple(values) if len(values) == 3 else (values[0],) * 3
+            elif words[0] == "Ni":
+                materials[name]["Ni"] = float(words[1]) if float(words[1]) > 0.0 else 1.5
+            elif words[0] == "illum":
+                materials[name]["illum"] = int(float(words[1]))
     return materials
 
 
@@ -97,17 +114,67 @@ def without_twins(triangles, names):
     return kept_triangles, kept_names
 
 
-def make_material(name, kd, ke):
+def sharp(nodes, kind, colour):
+    """A perfectly specular BSDF node of this colour."""
+    node = nodes.new(kind)
+    node.inputs["Color"].default_value = (*colour, 1.0)
+    node.inputs["Roughness"].default_value = 0.0
+    if hasattr(node, "distribution"):
+        node.distribution = "SHARP"
+    return node
+
+
+def add(nodes, links, a, b):
+    node = nodes.new("ShaderNodeAddShader")
+    links.new(a, node.inputs[0])
+    links.new(b, node.inputs[1])
+    return node.outputs["Shader"]
+
+
+def surface_shader(nodes, links, m):
+    """The scattering of one material as Lueur reads it (integrator/specular.cpp): Lambert, or a mirror or glass
+    beside a Lambert base."""
+    kd, illum = m["Kd"], m["illum"]
+    if illum in (3, 5):  # a mirror: Kd + Ks scaled down together where a channel passes 1
+        ks = m["Ks"]
+        total = max(1.0, *(kd[c] + ks[c] for c in range(3)))
+        base = tuple(v / total for v in kd)
+        mirror = sharp(nodes, "ShaderNodeBsdfGlossy", tuple(v / total for v in ks))
+        specular = mirror.outputs["BSDF"]
+    elif illum in (4, 6, 7):  # glass: the base Kd, the dielectric the rest, its refraction tinted by Tf
+        base = tuple(min(max(v, 0.0), 1.0) for v in kd)
+        rest = tuple(1.0 - v for v in base)
+        tf = tuple(min(max(v, 0.0), 1.0) for v in m["Tf"])
+        reflection = sharp(nodes, "ShaderNodeBsdfGlossy", rest)
+        refraction = sharp(nodes, "ShaderNodeBsdfRefraction", tuple(rest[c] * tf[c] for c in range(3)))
+        refraction.inputs["IOR"].default_value = min(m["Ni"], 10.0)
+        fresnel = nodes.new("ShaderNodeFresnel")
+        fresnel.inputs["IOR"].default_value = min(m["Ni"], 10.0)
+        mix = nodes.new("ShaderNodeMixShader")
+        links.new(fresnel.outputs["Fac"], mix.inputs["Fac"])
+        links.new(refraction.outputs["BSDF"], mix.inputs[1])
+        links.new(reflection.outputs["BSDF"], mix.inputs[2])
+        specular = mix.outputs["Shader"]
+    else:
+        base, specular = kd, None
+    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+    diffuse.inputs["Color"].default_value = (*base, 1.0)
+    diffuse.inputs["Roughness"].default_value = 0.0
+    if specular is None:
+        return diffuse.outputs["BSDF"]
+    return add(nodes, links, diffuse.outputs["BSDF"], specular)
+
+
+def make_material(name, m):
     material = bpy.data.materials.new(name)
     material.use_nodes = True
     nodes, links = material.node_tree.nodes, material.node_tree.links
     nodes.clear()
     output = nodes.new("ShaderNodeOutputMaterial")
-    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
-    diffuse.inputs["Color"].default_value = (*kd, 1.0)
-    diffuse.inputs["Roughness"].default_value = 0.0
+    surface = surface_shader(nodes, links, m)
+    ke = m["Ke"]
     if max(ke) <= 0.0:
-        links.new(diffuse.outputs["BSDF"], output.inputs["Surface"])
+        links.new(surface, output.inputs["Surface"])
         return material
     # One-sided emission: strength 1 - backfacing, so 1 in front and 0 behind.
     geometry = nodes.new("ShaderNodeNewGeometry")
@@ -118,10 +185,7 @@ def make_material(name, kd, ke):
     emission = nodes.new("ShaderNodeEmission")
     emission.inputs["Color"].default_value = (*ke, 1.0)
     links.new(front.outputs["Value"], emission.inputs["Strength"])
-    both = nodes.new("ShaderNodeAddShader")
-    links.new(emission.outputs["Emission"], both.inputs[0])
-    links.new(diffuse.outputs["BSDF"], both.inputs[1])
-    links.new(both.outputs["Shader"], output.inputs["Surface"])
+    links.new(add(nodes, links, emission.outputs["Emission"], surface), output.inputs["Surface"])
     return material
 
 
@@ -153,8 +217,7 @@ def main():
     mesh.from_pydata(vertices, [], triangles)
     slots = sorted({n or "" for n in names})
     for slot in slots:
-        kd, ke = materials.get(slot, [(0.8, 0.8, 0.8), (0.0, 0.0, 0.0)])
-        mesh.materials.append(make_material(slot or "default", kd, ke))
+        mesh.materials.append(make_material(slot or "default", materials.get(slot, default_material())))
     slot_of = {slot: i for i, slot in enumerate(slots)}
     mesh.polygons.foreach_set("material_index", [slot_of[n or ""] for n in names])
     mesh.update()
@@ -191,11 +254,14 @@ def main():
     cycles.max_bounces = args.bounces
     cycles.diffuse_bounces = args.bounces
     cycles.glossy_bounces = args.bounces
-    cycles.transmission_bounces = 0
+    cycles.transmission_bounces = args.bounces
     cycles.volume_bounces = 0
     cycles.transparent_max_bounces = 0
     cycles.sample_clamp_direct = 0.0
     cycles.sample_clamp_indirect = 0.0
+    cycles.caustics_reflective = True
+    cycles.caustics_refractive = True
+    cycles.blur_glossy = 0.0
     cycles.pixel_filter_type = "BOX"
     cycles.filter_width = 1.0
     scene.view_settings.view_transform = "Standard"

@@ -1,6 +1,8 @@
-// The report's Blinn-Phong BRDF. Depends on the scene layer (Material).
+// The report's Blinn-Phong BRDF, and the Lambert base of mirrors and glass (their specular lobes are in specular.h:
+// no shadow ray can find a direction of zero width). Depends on the scene layer (Material).
 #pragma once
 
+#include "integrator/specular.h"
 #include "scene/scene.h"
 
 namespace lueur {
@@ -24,7 +26,9 @@ inline float blinn_phong_lobe(float cos_theta_h, float exponent) {
 
 /// BRDF for light arriving along `wi` and leaving along `wo` (both unit, pointing away from the surface) at a point
 /// with shading normal `n`. With Ks: Kd / pi + Ks lobe. Without Ks: the report's mix Kd (K / pi + (1 - K) lobe).
+/// A mirror or glass: its Lambert base alone.
 inline Vec3 eval_brdf(const Material& m, const Vec3& kd, const Vec3& n, const Vec3& wi, const Vec3& wo, float blinn_k) {
+  if (m.is_specular()) return specular_parts(m, kd).base * kInvPi;
   // Pure Lambert (no Ks, K = 1): the lobe's weight is zero, so neither it nor the half vector is needed.
   if (!m.has_specular() && blinn_k >= 1.0f) return kd * kInvPi;
   const Vec3 h = wi + wo;
@@ -37,20 +41,23 @@ inline Vec3 eval_brdf(const Material& m, const Vec3& kd, const Vec3& n, const Ve
 
 /// The view-independent part of the BRDF (what a Lambertian surface would reflect).
 inline Vec3 eval_brdf_diffuse(const Material& m, const Vec3& kd, float blinn_k) {
+  if (m.is_specular()) return specular_parts(m, kd).base * kInvPi;
   return m.has_specular() ? kd * kInvPi : kd * (blinn_k * kInvPi);
 }
 
 /// Whether the BRDF toward `wo` is the same for every direction of arriving light above the surface, so that L1 is
 /// that constant times the arriving light: Lambert (no Ks, K = 1), or the report's mix whose lobe has exponent 0 (an
 /// MTL without Ns) seen from above the shading normal `n` (every half vector then lies above it, where that lobe is
-/// the constant 1 / pi).
+/// the constant 1 / pi), or the Lambert base of a mirror or glass.
 inline bool brdf_is_constant(const Material& m, float blinn_k, const Vec3& n, const Vec3& wo) {
+  if (m.is_specular()) return true;
   if (m.has_specular()) return false;
   return blinn_k >= 1.0f || (m.ns == 0.0f && glm::dot(n, wo) > 0.0f);
 }
 
 /// That constant, where brdf_is_constant holds: what eval_brdf gives for any light direction above the surface.
-inline Vec3 constant_brdf(const Vec3& kd, float blinn_k) {
+inline Vec3 constant_brdf(const Material& m, const Vec3& kd, float blinn_k) {
+  if (m.is_specular()) return specular_parts(m, kd).base * kInvPi;
   if (blinn_k >= 1.0f) return kd * kInvPi;
   return kd * (blinn_k * kInvPi + (1.0f - blinn_k) * blinn_phong_lobe(1.0f, 0.0f));
 }

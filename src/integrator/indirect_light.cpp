@@ -189,7 +189,7 @@ bool l1_from_ready_cell(const TracedScene& traced, PendingBounce& b, const Rende
   // The store holds the light arriving at q; q's own albedo (its colour map at q) turns it into L1.
   const Vec3 kd = traced.scene.albedo(b.hit.triangle, b.hit.u, b.hit.v);
   if (brdf_is_constant(mq, settings.blinn_k, n, -b.ray.dir)) {
-    l1_q = constant_brdf(kd, settings.blinn_k) * arriving;
+    l1_q = constant_brdf(mq, kd, settings.blinn_k) * arriving;
   } else {
     l1_q =
         eval_brdf_diffuse(mq, kd, settings.blinn_k) * arriving +

@@ -1,5 +1,5 @@
-// One frame in two phases over the tiles. Phase 1: a jittered primary ray per pixel, Le, L1 and AO at its first
-// hit, and the screen buffer L2 reuses. Phase 2: L2, which may read any pixel's phase-1 L1. Results go to per-frame
+// One frame in two phases over the tiles. Phase 1: a jittered primary ray per pixel, followed through mirrors and
+// glass to the pixel's p (camera_path.h), Le along the way, L1, AO and ln at p, and the screen buffer L2 reuses. Phase 2: L2, which may read any pixel's phase-1 L1. Results go to per-frame
 // buffers and are added to the film only once the whole frame has finished, so a cancelled frame leaves no trace
 // and every pixel's sums see the same sequence of additions whatever the thread count.
 #include "integrator/renderer.h"
@@ -14,15 +14,24 @@
 
 #include "core/stopwatch.h"
 #include "integrator/camera_light.h"
+#include "integrator/camera_path.h"
 #include "integrator/direct_light.h"
+#include "integrator/further_bounces.h"
 #include "integrator/indirect_light.h"
 
 namespace lueur {
 namespace {
 
+/// How the camera's path reached a pixel's p: what p's estimates are weighted by, and the bounces before it.
+struct PathToP {
+  Vec3 throughput{1.0f};
+  int bounces = 0;
+};
+
 struct FrameBuffers {
   std::array<std::vector<Vec3>, kLayerCount> values;  ///< this frame's value per needed layer and pixel
-  std::vector<SurfacePoint> hits;                     ///< primary hit per pixel (triangle kNoHit: none)
+  std::vector<SurfacePoint> hits;                     ///< p per pixel (triangle kNoHit: none)
+  std::vector<PathToP> paths;                         ///< per pixel, how its p was reached
   ScreenBuffer screen;
 };
 
@@ -35,7 +44,7 @@ void set_layer(FrameBuffers& frame, Layer layer, size_t pixel, const Vec3& value
   if (!values.empty()) values[pixel] = value;
 }
 
-/// Le by `settings.le_rays` camera rays of their own (when there are more than one): the sum of the emission they
+/// Le by `settings.le_rays` camera rays of their own, each followed through mirrors and glass (when there are more than one): the sum of the emission they
 /// see. Emission is cheap to see and its edges are the sharpest in the image, so they get more camera rays per frame
 /// than the shading does. They are one aligned block of one sequence per frame, not the pixel's primary ray plus
 /// le_rays - 1 others: the primary's jitter is a sequence of its own (over frames), and three of each block of four
@@ -54,9 +63,10 @@ Vec3 emission_of_le_rays(const TracedScene& traced, const Camera& camera, const 
       const Ray ray = camera_ray(camera, static_cast<float>(x) + u1[k], static_cast<float>(y) + u2[k]);
       ++rays;
       ++primary_rays;
-      const Hit hit = intersect_closest(traced.accel, ray);
-      if (hit.found() && seen_from_front(traced.scene, hit.triangle, ray.dir))
-        sum += traced.scene.material_of(hit.triangle).ke;
+      // Vertex j's lobe: dimension 1 + j of the ray's sample (dimension 0 is its position in the pixel).
+      sum += follow_camera_path(traced, ray, settings.max_bounces, sampler,
+                                first_sample_of_run(frame, count) + static_cast<uint64_t>(batch) + k, 1, rays)
+                 .emission;
     }
   }
   return sum;
@@ -81,7 +91,7 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
   const Ray ray = camera_ray(camera, static_cast<float>(x) + jitter.x, static_cast<float>(y) + jitter.y);
   ++rays;
   ++primary_rays;
-  const Hit hit = intersect_closest(traced.accel, ray);
+  const CameraPath path = follow_camera_path(traced, ray, settings.max_bounces, camera_sampler, frame, 1, rays);
   const bool le = settings.pass_enabled(Pass::kLe);
   // One Le ray: the primary's. More: rays of their own (emission_of_le_rays), the primary's emission unused.
   const bool le_of_own_rays = le && settings.le_rays > 1;
@@ -89,15 +99,19 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
     const Vec3 emission = emission_of_le_rays(traced, camera, settings, x, y, pixel, frame, rays, primary_rays);
     set_layer(out, Layer::kLe, i, emission / static_cast<float>(settings.le_rays));
   }
-  if (!hit.found()) return;
+  if (le && !le_of_own_rays) set_layer(out, Layer::kLe, i, path.emission);
+  if (!path.hit.found()) return;
 
-  const SurfacePoint sp = make_surface_point(traced.scene, ray, hit);
+  const SurfacePoint sp = make_surface_point(traced.scene, path.ray, path.hit);
+  const Vec3& throughput = path.throughput;
   out.hits[i] = sp;
-  out.screen.triangle[i] = hit.triangle;
-  out.screen.pixels[i].position = sp.position;
-  out.screen.pixels[i].albedo = sp.albedo;
-  const Material& material = traced.scene.material_of(hit.triangle);
-  if (le && !le_of_own_rays) set_layer(out, Layer::kLe, i, sp.front_face ? material.ke : Vec3(0.0f));
+  out.paths[i] = PathToP{throughput, path.bounces};
+  // A p seen through a mirror or glass does not project to its pixel: the screen reuse must not find it there.
+  if (!path.through_specular) {
+    out.screen.triangle[i] = path.hit.triangle;
+    out.screen.pixels[i].position = sp.position;
+    out.screen.pixels[i].albedo = sp.albedo;
+  }
 
   const bool l2 = settings.pass_enabled(Pass::kL2);
   const bool screen_needs_l1 = l2 && uses_screen(settings.reuse);
@@ -124,8 +138,8 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
       const L1CacheKey key = jittered_key(*grid, sp.position, sp.geometric_normal, u1, u2);
       records->push_back(make_l1_record(key, hash_of(key), arriving, static_cast<uint32_t>(options.rays)));
     }
-    set_layer(out, Layer::kL1, i, l1);
-    set_layer(out, Layer::kL1Diffuse, i, diffuse);
+    set_layer(out, Layer::kL1, i, throughput * l1);
+    set_layer(out, Layer::kL1Diffuse, i, throughput * diffuse);
     const Vec3 screen_l1 = settings.reuse_diffuse_only ? diffuse : l1;
     out.screen.pixels[i].l1 = screen_l1;
     if (screen_needs_l1 && settings.reuse == ReuseMode::kAverage) {
@@ -138,8 +152,15 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
   if (settings.pass_enabled(Pass::kAo)) {
     PixelSampler sampler(settings.sampler, settings.seed, pixel, frame, RngPurpose::kOcclusion);
     set_layer(out, Layer::kAo, i,
-              estimate_ambient_occlusion(traced, sp, settings.ao_rays, ambient_occlusion_radius(traced, settings),
-                                         sampler, first_sample_of_run(frame, settings.ao_rays), rays));
+              throughput * estimate_ambient_occlusion(traced, sp, settings.ao_rays,
+                                                      ambient_occlusion_radius(traced, settings), sampler,
+                                                      first_sample_of_run(frame, settings.ao_rays), rays));
+  }
+  if (settings.pass_enabled(Pass::kLn)) {
+    PixelSampler sampler(settings.sampler, settings.seed, pixel, frame, RngPurpose::kPath);
+    set_layer(out, Layer::kLn, i,
+              throughput * estimate_further_bounces(traced, sp, settings, path.bounces, sampler,
+                                                    first_sample_of_run(frame, settings.ln_rays), rays));
   }
 }
 
@@ -151,6 +172,8 @@ void trace_indirect(const TracedScene& traced, const Camera& camera, const Rende
   const size_t i = pixel_index(x, y, camera.width);
   const SurfacePoint& sp = out.hits[i];
   if (sp.triangle == kNoHit) return;
+  const PathToP& path = out.paths[i];
+  if (path.bounces + 1 > settings.max_bounces) return;  // L2's bounce would be one too many
   PixelSampler bounce_sampler(settings.sampler, settings.seed, i, frame, RngPurpose::kIndirect);
   PixelSampler recompute_sampler(settings.sampler, settings.seed, i, frame, RngPurpose::kRecompute);
   Pcg32 jitter(0, 0);
@@ -162,10 +185,10 @@ void trace_indirect(const TracedScene& traced, const Camera& camera, const Rende
   const IndirectResult r =
       estimate_indirect_light(traced, camera, out.screen, sp, settings, bounce_sampler, recompute_sampler,
                               first_sample_of_run(frame, settings.l2_rays), rays, store ? &access : nullptr);
-  set_layer(out, Layer::kL2, i, r.l2);
-  set_layer(out, Layer::kL2Reused, i, r.from_reused);
-  set_layer(out, Layer::kL2Recomputed, i, r.from_recomputed);
-  set_layer(out, Layer::kL2Cached, i, r.from_cached);
+  set_layer(out, Layer::kL2, i, path.throughput * r.l2);
+  set_layer(out, Layer::kL2Reused, i, path.throughput * r.from_reused);
+  set_layer(out, Layer::kL2Recomputed, i, path.throughput * r.from_recomputed);
+  set_layer(out, Layer::kL2Cached, i, path.throughput * r.from_cached);
   // Where the bounce hits took L1(q) from, as shares: red the screen, green the store, blue recomputed.
   if (r.bounce_hits > 0) {
     const auto share = [&](int n) { return static_cast<float>(n) / static_cast<float>(r.bounce_hits); };
@@ -226,6 +249,7 @@ uint64_t frames_before_samples_repeat(const RenderSettings& settings) {
   if (settings.pass_enabled(Pass::kLe)) longest = std::max(longest, run(settings.le_rays));
   if (layers[static_cast<size_t>(Layer::kL1)] || settings.pass_enabled(Pass::kL2)) longest = std::max(longest, run(settings.l1_rays));
   if (settings.pass_enabled(Pass::kAo)) longest = std::max(longest, run(settings.ao_rays));
+  if (settings.pass_enabled(Pass::kLn)) longest = std::max(longest, run(settings.ln_rays));
   if (settings.pass_enabled(Pass::kL2)) {
     // indirect_light.cpp: each bounce's shadow rays are a run as long as the longest estimate a bounce may trace.
     const int shadow_run = std::max(settings.recompute_rays(), uses_cache(settings.reuse) ? kL1CacheFillRays : 0);
@@ -254,6 +278,7 @@ FrameResult render_frame(const TracedScene& traced, const Camera& camera, const 
   SurfacePoint none;
   none.triangle = kNoHit;
   buffers.hits.assign(film.pixel_count(), none);
+  buffers.paths.assign(film.pixel_count(), PathToP{});
   buffers.screen.resize(width, height);
   if (settings.pass_enabled(Pass::kL2) && settings.reuse == ReuseMode::kAverage)
     buffers.screen.l1_average.assign(film.pixel_count(), Vec3(0.0f));

@@ -77,6 +77,9 @@ LightTable build_light_table(const Scene& scene) {
   if (table.empty()) return table;
   // An emitter whose luminance is zero everywhere would make the power table empty: fall back to area.
   if (!(power_sum > 0.0)) table.by_power.cdf = table.by_area.cdf;
+  table.total_area = area_sum;
+  table.total_power = power_sum;
+  table.power_is_area = !(power_sum > 0.0);
   index_light_cdf(table.by_area);
   index_light_cdf(table.by_power);
   table.clusters = build_light_clusters(table.records);
@@ -103,6 +106,12 @@ LightChoice choose_light(const LightTable& table, LightStrategy strategy, float 
       break;
   }
   return choice;
+}
+
+float power_point_density(const LightTable& table, const Vec3& ke) {
+  if (table.empty()) return 0.0f;
+  if (table.power_is_area) return static_cast<float>(1.0 / table.total_area);
+  return static_cast<float>(luminance(ke) / table.total_power);
 }
 
 float light_pmf(const LightTable& table, LightStrategy strategy, uint32_t index) {

@@ -27,6 +27,8 @@ struct LightTable {
   LightCdf by_area;                    ///< running sum of areas
   LightCdf by_power;                   ///< running sum of area x luminance(Ke)
   LightClusters clusters;              ///< for the choice per shaded point (kImportance)
+  double total_area = 0.0, total_power = 0.0;
+  bool power_is_area = false;  ///< no emitter has a positive luminance: choosing by power chooses by area
   bool empty() const { return triangles.empty(); }
   size_t size() const { return triangles.size(); }
 };
@@ -41,6 +43,11 @@ void index_light_cdf(LightCdf& table);
 /// kImportance chooses per shaded point (choose_weighted_light); with no point to weigh the emitters at, as here,
 /// it chooses by power.
 LightChoice choose_light(const LightTable& table, LightStrategy strategy, float u);
+
+/// The density per unit area of a point chosen by power (choose_light with kPower) and then uniformly on its
+/// emitter, at an emitter of emission `ke`: luminance(ke) / total power. What a path that meets an emitter needs to
+/// weigh its light against a shadow ray's (multiple importance sampling), with no look-up of the emitter.
+float power_point_density(const LightTable& table, const Vec3& ke);
 
 /// Probability that `choose_light` returns `index`.
 float light_pmf(const LightTable& table, LightStrategy strategy, uint32_t index);

@@ -36,7 +36,7 @@ inline constexpr bool uses_cache(ReuseMode m) { return m == ReuseMode::kCache ||
 struct RenderSettings {
   int width = 512;
   int height = 512;
-  std::array<bool, kPassCount> enabled = {true, true, true, false};
+  std::array<bool, kPassCount> enabled = {true, true, true, false, false};
   LightStrategy lights = LightStrategy::kImportance;
   int le_rays = 4;       ///< camera rays per pixel per frame that estimate Le (1: the ray that carries L1, L2, AO)
   int l1_rays = 16;      ///< shadow rays per pixel per frame
@@ -50,6 +50,10 @@ struct RenderSettings {
                                    ///< 0 or less: automatic (cache_cell_pixels_in_use)
   int cache_mb = 256;              ///< the L1 store's memory cap, in MiB
   int ao_rays = 16;
+  int ln_rays = 4;  ///< paths per pixel per frame that carry the light of the second and later bounces (ln)
+  /// Scattering events a path may have, counted as Cycles counts them: every diffuse, glossy, mirror or glass
+  /// bounce, the camera's specular ones included. 1 is Le + L1 + L2 (ln then carries nothing).
+  int max_bounces = 8;
   float ao_radius = 0.0f;  ///< world units; 0 or less: a tenth of the scene's bounding-box diagonal
   uint64_t seed = 0;
   SamplerKind sampler = SamplerKind::kSobol;  ///< where the estimators' random numbers come from

@@ -77,6 +77,23 @@ std::vector<Row> make_rows() {
                            [](auto& s) -> auto& { return s.render.ao_radius; }, {0, 1e30});
   ao_radius.always_described = false;
   table.push_back(ao_radius);
+  // Written into images and the settings text only where they differ from their defaults: an image of the report's
+  // passes reads as it did before the further bounces came.
+  Row ln_rays = integer_row(
+      "ln-rays",
+      "paths per pixel per frame that carry ln, the light of the second and later bounces (next-event estimation "
+      "and multiple importance sampling at every vertex, Russian roulette after the first few)",
+      E::kRestart, [](auto& s) -> auto& { return s.render.ln_rays; }, rays, SettingRange{1, 64});
+  ln_rays.always_described = false;
+  table.push_back(ln_rays);
+  Row max_bounces = integer_row(
+      "max-bounces",
+      "scattering events a path may have, counted as Cycles counts them (every diffuse, glossy, mirror or glass "
+      "bounce, the camera's through mirrors and glass included): 1 is Le + L1 + L2",
+      E::kRestart, [](auto& s) -> auto& { return s.render.max_bounces; }, SettingRange{1, 1024},
+      SettingRange{1, 32});
+  max_bounces.always_described = false;
+  table.push_back(max_bounces);
   table.push_back(view_row());
   Row accel = enum_row<AccelKind>(
       "accel", "acceleration structure: Lueur's own BVH or Embree", E::kReload, kAccelKindNames,

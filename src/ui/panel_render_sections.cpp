@@ -12,7 +12,8 @@ namespace lueur {
 void passes_section(PanelModel& m) {
   Settings& v = m.settings;
   static const char* const kLabels[kPassCount] = {"Le  (emission seen)", "L1  (direct light)",
-                                                  "L2  (one-bounce indirect)", "AO  (ambient occlusion)"};
+                                                  "L2  (one-bounce indirect)", "AO  (ambient occlusion)",
+                                                  "Ln  (second and later bounces)"};
   for (int p = 0; p < kPassCount; ++p) {
     const size_t i = static_cast<size_t>(p);
     ImGui::PushID(p);
@@ -29,7 +30,13 @@ void passes_section(PanelModel& m) {
   // One preset per line: side by side they do not fit the panel's width.
   const float full_width = ImGui::GetContentRegionAvail().x;
   if (ImGui::Button("Report (Le 1, L1 0.6, L2 0.4)", ImVec2(full_width, 0.0f))) v.weights = kReportWeights;
-  if (ImGui::Button("Physical (all 1)", ImVec2(full_width, 0.0f))) v.weights = {1.0f, 1.0f, 1.0f, 1.0f};
+  record_widget(m, "preset-report");
+  // The full solution: every light pass at weight 1, the further bounces on, AO (no light) off.
+  if (ImGui::Button("Physical (Le + L1 + L2 + Ln, all 1)", ImVec2(full_width, 0.0f))) {
+    v.weights = kPhysicalWeights;
+    v.render.enabled = {true, true, true, false, true};
+  }
+  record_widget(m, "preset-physical");
 }
 
 namespace {
@@ -92,6 +99,8 @@ void sampling_section(PanelModel& m) {
   }
   setting_slider("AO rays", "ao-rays", r.ao_rays);
   ao_radius_widgets(m);
+  setting_slider("Ln paths", "ln-rays", r.ln_rays);
+  setting_slider("Max bounces", "max-bounces", r.max_bounces);
   ImGui::Checkbox("Smooth normals", &v.smooth_normals);  // the viewer prepares the scene again
   setting_tooltip("smooth-normals");
   ImGui::Checkbox("Head-light", &r.camera_light);

@@ -1,0 +1,148 @@
+// ln by path tracing from p (see further_bounces.h). Which vertex's light belongs to which pass: the light that
+// reaches p directly is L1's; the light that a non-specular q, one bounce from p, receives by its shadow rays is
+// L2's, and so is the emitter that q's bounce direction would meet; everything else is ln's. A mirror or glass
+// vertex has no shadow ray that could find its light, so what its specular direction meets counts in full.
+#include "integrator/further_bounces.h"
+
+#include <algorithm>
+
+#include "core/sampling.h"
+#include "integrator/brdf.h"
+#include "integrator/camera_path.h"
+#include "integrator/direct_light.h"
+#include "integrator/specular.h"
+
+namespace lueur {
+namespace {
+
+/// The pairs of dimensions each vertex draws: (the lobe, Russian roulette), the bounce direction, (the emitter, -),
+/// the point on the emitter.
+constexpr uint32_t kPairsPerVertex = 4;
+/// Russian roulette from this vertex on (p is 0): the first bounces keep their whole throughput.
+constexpr uint32_t kRouletteVertex = 3;
+
+float power_heuristic(float pdf, float other) {
+  const float a = pdf * pdf, b = other * other;
+  return a + b > 0.0f ? a / (a + b) : 0.0f;
+}
+
+/// Next-event estimation at v: one point on an emitter chosen by power (the choice whose density any later vertex
+/// can evaluate for the weights), its light through v's non-specular BRDF, weighted against v's bounce direction
+/// finding the same light (`weigh`: a bounce follows; `bounce_probability`: the share of v's bounces that are not
+/// specular, which scales their pdf).
+Vec3 next_event(const TracedScene& traced, const SurfacePoint& v, const Material& m, float blinn_k,
+                float bounce_probability, bool weigh, const Vec2& choice_u, const Vec2& point_u, uint64_t& rays) {
+  const LightTable& table = traced.lights;
+  if (table.empty()) return Vec3(0.0f);
+  const LightChoice choice = choose_light(table, LightStrategy::kPower, choice_u.x);
+  if (!(choice.pmf > 0.0f)) return Vec3(0.0f);
+  const EmitterRecord& e = table.records[choice.index];
+  const Vec2 b = sample_uniform_triangle(point_u.x, point_u.y);
+  const Vec3 point = (1.0f - b.x - b.y) * e.p0 + b.x * e.p1 + b.y * e.p2;
+  const Vec3 to_point = point - v.position;
+  const float distance2 = glm::dot(to_point, to_point);
+  if (!(distance2 > 0.0f)) return Vec3(0.0f);
+  const Vec3 wi = to_point / std::sqrt(distance2);
+  const float cos_light = -glm::dot(e.normal, wi);
+  const float cos_surface = glm::dot(v.shading_normal, wi);
+  if (cos_light <= 0.0f || cos_surface <= 0.0f || glm::dot(v.geometric_normal, wi) <= 0.0f) return Vec3(0.0f);
+  Ray shadow;
+  shadow.origin = leaving_origin(v);
+  shadow.dir = point - shadow.origin;
+  shadow.tmin = 0.0f;
+  shadow.tmax = kShadowReach;
+  ++rays;
+  if (intersect_any(traced.accel, shadow)) return Vec3(0.0f);
+  const float pdf = choice.pmf / e.area * distance2 / cos_light;  // solid angle, as sampled
+  float weight = 1.0f;
+  if (weigh) {
+    const float light_pdf = power_point_density(table, e.ke) * distance2 / cos_light;
+    weight = power_heuristic(light_pdf, bounce_probability * cos_surface * kInvPi);
+  }
+  return eval_brdf(m, v.albedo, v.shading_normal, wi, v.wo, blinn_k) * e.ke * (cos_surface * weight / pdf);
+}
+
+/// One path from p: its light beyond L1 and L2.
+Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSettings& settings, int bounces_before,
+                PixelSampler& sampler, uint64_t& rays) {
+  const Scene& scene = traced.scene;
+  Vec3 light(0.0f), throughput(1.0f);
+  SurfacePoint v = p;
+  int bounces = bounces_before;  // scattering events before v
+  bool after_specular = false;   // v was reached along a specular direction
+  float bounce_pdf = 0.0f;       // otherwise, the solid-angle pdf of the direction that reached it
+  for (uint32_t vertex = 0;; ++vertex) {
+    const Material& m = scene.material_of(v.triangle);
+    const uint32_t pair = kPairsPerVertex * vertex;
+    const Vec2 lobe_u = sampler.get_2d_of_dimension(pair);
+    const bool scatters = bounces + 1 <= settings.max_bounces;
+    // p scatters by its BRDF (a specular p: by its base, which the camera's path chose); later vertices by their
+    // lobes.
+    SpecularSample specular;
+    const bool lobes = vertex > 0 && m.is_specular();
+    if (lobes)
+      specular = sample_specular(m, v.albedo, v.shading_normal, v.geometric_normal, v.wo, v.front_face, lobe_u.x);
+    if (vertex >= 2 && reflects_light(m))
+      light += throughput * next_event(traced, v, m, settings.blinn_k, lobes ? specular.base_probability : 1.0f,
+                                       scatters, sampler.get_2d_of_dimension(pair + 2),
+                                       sampler.get_2d_of_dimension(pair + 3), rays);
+    if (!scatters) break;
+    if (vertex >= kRouletteVertex) {
+      const float survival = std::min(1.0f, std::max({throughput.r, throughput.g, throughput.b}));
+      if (!(lobe_u.y < survival)) break;
+      throughput /= survival;
+    }
+    Vec3 dir(0.0f);
+    if (lobes && specular.lobe != SpecularLobe::kBase) {
+      if (specular.lobe == SpecularLobe::kNone) break;
+      dir = specular.dir;
+      throughput *= specular.weight;
+      after_specular = true;
+    } else {
+      const Vec2 u = sampler.get_2d_of_dimension(pair + 1);
+      const Vec3 local = sample_cosine_hemisphere(u.x, u.y);
+      dir = Frame::from_normal(v.shading_normal).to_world(local);
+      if (!(local.z > 0.0f) || glm::dot(dir, v.geometric_normal) <= 0.0f) break;
+      // f cos / pdf: the base's albedo / its probability, or f pi for a BRDF sampled by its cosine.
+      throughput *= lobes ? specular.weight : eval_brdf(m, v.albedo, v.shading_normal, dir, v.wo, settings.blinn_k) * kPi;
+      bounce_pdf = (lobes ? specular.base_probability : 1.0f) * local.z * kInvPi;
+      after_specular = false;
+    }
+    if (!(std::max({throughput.r, throughput.g, throughput.b}) > 0.0f)) break;
+    const Ray ray = leaving_ray(v.position, v.geometric_normal, dir);
+    ++rays;
+    const Hit hit = intersect_closest(traced.accel, ray);
+    ++bounces;
+    if (!hit.found()) break;
+    v = make_surface_point(scene, ray, hit);
+    const Material& mv = scene.material_of(hit.triangle);
+    if (v.front_face && mv.emissive()) {
+      const uint32_t reached = vertex + 1;
+      if (after_specular && reached >= 2) {
+        light += throughput * mv.ke;
+      } else if (!after_specular && reached >= 3) {
+        const float cos_light = glm::dot(v.geometric_normal, v.wo);
+        const float light_pdf = power_point_density(traced.lights, mv.ke) * hit.t * hit.t / cos_light;
+        light += throughput * mv.ke * power_heuristic(bounce_pdf, light_pdf);
+      }
+    }
+  }
+  return light;
+}
+
+}  // namespace
+
+Vec3 estimate_further_bounces(const TracedScene& traced, const SurfacePoint& p, const RenderSettings& settings,
+                              int bounces_before, PixelSampler& sampler, uint64_t first_sample,
+                              uint64_t& rays_traced) {
+  if (settings.ln_rays <= 0 || bounces_before + 2 > settings.max_bounces) return Vec3(0.0f);
+  if (!reflects_light(traced.scene.material_of(p.triangle))) return Vec3(0.0f);
+  Vec3 sum(0.0f);
+  for (int k = 0; k < settings.ln_rays; ++k) {
+    sampler.start_sample(first_sample + static_cast<uint64_t>(k));
+    sum += trace_path(traced, p, settings, bounces_before, sampler, rays_traced);
+  }
+  return sum / static_cast<float>(settings.ln_rays);
+}
+
+}  // namespace lueur
