@@ -40,7 +40,7 @@ TEST(Mpi, SameBytesForOneToFourRanksAndTheSingleBinary) {
     const char* file;
   };
   const Case cases[] = {{"", "plain.pfm"},
-                        {"--passes le,l1,l2,ao --sampler sobol", "passes.exr"},
+                        {"--passes le,l1,l2,ao,ln --ln-rays 2 --sampler sobol", "passes.exr"},
                         {"--compare lights=uniform", "split.png"}};
   for (const Case& c : cases) {
     const std::string single = dir + "/single-" + c.file;

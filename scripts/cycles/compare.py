@@ -3,9 +3,9 @@
 
 For each Cycles sample count (16, 64, 256 by default) Cycles renders once and reports its own render time T (its
 scene sync, BVH build and samples); Lueur then renders with its default settings within T and within T / 2, its
-loading and BVH build counted (its tracing gets `--time-limit` of the budget less the loading time it measured on
-its first run, and the time reported is what it used: loading plus tracing, the last frame whole), and every
-image's relMSE against a
+loading and BVH build counted: as many whole frames as fit in the budget (their count estimated from a first
+render's time per frame, then lowered until the time Lueur used, loading plus tracing, is within the budget), and
+every image's relMSE against a
 long Cycles reference is printed: mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01). Lueur also renders
 a long image of its own with another seed, whose relMSE against Cycles' reference is the floor Lueur's error can
 reach (what still differs between the renderers, and the reference's own noise); Lueur's images are measured
@@ -48,6 +48,31 @@ def read_pfm(path):
     order = "<" if float(parts[2]) < 0 else ">"
     count = 3 * width * height
     return width, height, struct.unpack(order + "%df" % count, parts[3][: 4 * count])
+
+
+def block_means(image, blocks=8):
+    """The mean luminance of the whole image and of each of blocks x blocks equal blocks."""
+    width, height, values = image
+    sums = [[0.0] * blocks for _ in range(blocks)]
+    total = 0.0
+    for y in range(height):
+        row = sums[y * blocks // height]
+        for x in range(width):
+            i = 3 * (y * width + x)
+            luminance = 0.2126 * values[i] + 0.7152 * values[i + 1] + 0.0722 * values[i + 2]
+            row[x * blocks // width] += luminance
+            total += luminance
+    area = (width // blocks) * (height // blocks)
+    return total / (width * height), [v / area for row in sums for v in row]
+
+
+def block_errors(image, reference):
+    """The relative difference of the image means, and the root mean square of the blocks' relative differences
+    (blocks darker than a hundredth of the reference's mean left out: their ratios are noise)."""
+    mean, blocks = block_means(image)
+    ref_mean, ref_blocks = block_means(reference)
+    kept = [(b - r) / r for b, r in zip(blocks, ref_blocks) if r > 0.01 * ref_mean]
+    return (mean - ref_mean) / ref_mean, (sum(e * e for e in kept) / max(len(kept), 1)) ** 0.5
 
 
 def relative_mse(image, reference):
@@ -115,15 +140,13 @@ def cycles_render(args, obj, spp, seed, out):
     return float(match.group(1))
 
 
-def lueur_render(args, obj, out, seconds=0.0, frames=1000000, seed=None):
+def lueur_render(args, obj, out, frames, seed=None):
     """Renders with Lueur; returns (frames, seconds used: loading and BVH build plus tracing, loading seconds)."""
     passes = "le,l1,l2" + (",ln" if args.bounces > 1 else "")
     command = [args.lueur, obj, "--headless", "--out", out, "--camera", args.camera, "--size", args.size,
                "--passes", passes, "--weights", "le=1,l1=1,l2=1,ln=1", "--max-bounces", str(args.bounces),
                "--blinn-k", "1", "--smooth-normals", "off",
                "--frames", str(frames), "--seed", str(args.seed if seed is None else seed)]
-    if seconds > 0.0:
-        command += ["--time-limit", "%.4f" % seconds]
     if args.threads > 0:
         command += ["--threads", str(args.threads)]
     command += args.lueur_option
@@ -134,6 +157,27 @@ def lueur_render(args, obj, out, seconds=0.0, frames=1000000, seed=None):
         raise SystemExit("compare: Lueur printed no frame count or loading time")
     load = float(loaded.group(1))
     return int(match.group(1)), load + float(match.group(2)), load
+
+
+def render_within(args, obj, path, budget, load_seconds, frame_seconds):
+    """Renders the most whole frames whose time, loading included, stays within `budget` (at least one frame), the
+    count found from each render's own time per frame; returns (frames, seconds used), the image left at `path`."""
+    frames, best, tried = max(1, int((budget - load_seconds) / frame_seconds)), None, set()
+    while frames not in tried:
+        tried.add(frames)
+        attempt = "%s.%d.pfm" % (path, frames)
+        rendered, seconds, load = lueur_render(args, obj, attempt, frames=frames)
+        fits = (budget - load) / max(seconds - load, 1e-6) * rendered  # frames at this render's pace
+        if seconds <= budget or frames == 1:
+            if best is None or rendered > best[0]:
+                best = (rendered, seconds)
+                shutil.copyfile(attempt, path)
+            frames = max(frames, int(fits))
+        else:
+            frames = max(1, min(frames - 1, int(fits)))
+        if best is not None and frames <= best[0]:
+            break
+    return best
 
 
 def parse_arguments():
@@ -206,22 +250,30 @@ def main():
             frames, seconds, load_seconds = lueur_render(args, obj, path, frames=args.lueur_reference_frames,
                                                          seed=args.seed + 100)
             own_image = read_pfm(path)
-            own = {"frames": frames, "seconds": seconds, "relmse": relative_mse(own_image, reference)}
-            print("compare: Lueur's own reference: %d frames in %.1f s, relMSE %.6f against Cycles'"
-                  % (frames, seconds, own["relmse"]), flush=True)
+            mean_error, block_rms = block_errors(own_image, reference)
+            own = {"frames": frames, "seconds": seconds, "relmse": relative_mse(own_image, reference),
+                   "mean_error": mean_error, "block_rms": block_rms}
+            print("compare: Lueur's own reference: %d frames in %.1f s, relMSE %.6f against Cycles', mean %+.2f%%, "
+                  "8x8 blocks %.2f%% rms" % (frames, seconds, own["relmse"], 100 * mean_error, 100 * block_rms),
+                  flush=True)
 
-        if own is None:
-            _, _, load_seconds = lueur_render(args, obj, os.path.join(work, "lueur-load.pfm"), frames=1)
+        # The time a frame takes, from a short render: where the budgets' frame counts start.
+        calibration_frames = 8
+        _, seconds, load_seconds = lueur_render(args, obj, os.path.join(work, "lueur-calibration.pfm"),
+                                                frames=calibration_frames)
+        frame_seconds = max(seconds - load_seconds, 1e-6) / calibration_frames
         rows = []
         for spp in (int(s) for s in args.spp.split(",")):
             cycles_path = os.path.join(work, "cycles-%d.pfm" % spp)
             cycles_seconds = cycles_render(args, obj, spp, 1, cycles_path)
+            cycles_image = read_pfm(cycles_path)
+            mean_error, block_rms = block_errors(cycles_image, reference)
             row = {"spp": spp, "cycles_seconds": cycles_seconds,
-                   "cycles_relmse": relative_mse(read_pfm(cycles_path), reference)}
+                   "cycles_relmse": relative_mse(cycles_image, reference), "cycles_mean_error": mean_error,
+                   "cycles_block_rms": block_rms}
             for label, budget in (("same", cycles_seconds), ("half", cycles_seconds / 2.0)):
                 path = os.path.join(work, "lueur-%d-%s.pfm" % (spp, label))
-                # The tracing gets what the budget leaves after loading (at least one frame is always traced).
-                frames, seconds, _ = lueur_render(args, obj, path, seconds=max(budget - load_seconds, 1e-4))
+                frames, seconds = render_within(args, obj, path, budget, load_seconds, frame_seconds)
                 image = read_pfm(path)
                 row[label] = {"frames": frames, "seconds": seconds, "relmse": relative_mse(image, reference),
                               "relmse_own": relative_mse(image, own_image) if own else None}
@@ -237,7 +289,7 @@ def main():
         print()
         print("%s, %s, camera \"%s\", %d bounces; relMSE against Cycles at %d samples (in brackets: against Lueur's "
               "own reference)" % (args.scene, args.size, args.camera, args.bounces, args.reference_spp))
-        print("Lueur's times: loading and BVH build plus tracing, as used (the last frame whole)")
+        print("Lueur's times: loading and BVH build plus tracing, as used: the most whole frames within the budget")
         print("| Cycles | time | relMSE | Lueur, same time | time | relMSE | Lueur, half the time | time | relMSE "
               "| half reaches |")
         print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---|")
@@ -247,8 +299,12 @@ def main():
                 r["same"]["relmse"], own_text(r["same"]), r["half"]["frames"], r["half"]["seconds"],
                 r["half"]["relmse"], own_text(r["half"]), "yes" if r["half"]["relmse"] <= r["cycles_relmse"] else "no"))
         if own:
-            print("Lueur's own reference: %d frames (%.1f s), relMSE %.6f against Cycles' (the floor)" % (
-                own["frames"], own["seconds"], own["relmse"]))
+            print("Lueur's own reference: %d frames (%.1f s), relMSE %.6f against Cycles' (the floor); its mean %+.2f%% "
+                  "of Cycles', its 8x8 blocks %.2f%% rms" % (own["frames"], own["seconds"], own["relmse"],
+                                                             100 * own["mean_error"], 100 * own["block_rms"]))
+        for r in rows:
+            print("Cycles at %d spp against its reference: mean %+.2f%%, 8x8 blocks %.2f%% rms (its own noise)" % (
+                r["spp"], 100 * r["cycles_mean_error"], 100 * r["cycles_block_rms"]))
         if args.json:
             partial = args.json + ".partial"
             with open(partial, "w") as f:

@@ -74,8 +74,10 @@ def read_materials(mtl_path):
 
 
 def read_obj(obj_path):
-    """Vertices, triangles (fans of each face) and each triangle's material name."""
+    """Vertices, triangles (fans of each face), each triangle's material name, the file's normals and each
+    triangle's three normal indices (None where a corner has none)."""
     vertices, triangles, names, materials, current = [], [], [], {}, None
+    normals, corner_normals = [], []
     folder = os.path.dirname(obj_path)
     with open(obj_path, encoding="utf-8", errors="replace") as f:
         for raw in f:
@@ -84,34 +86,41 @@ def read_obj(obj_path):
                 continue
             if words[0] == "v":
                 vertices.append(tuple(float(w) for w in words[1:4]))
+            elif words[0] == "vn":
+                normals.append(tuple(float(w) for w in words[1:4]))
             elif words[0] == "mtllib":
                 for library in words[1:]:
                     materials.update(read_materials(os.path.join(folder, library)))
             elif words[0] == "usemtl":
                 current = words[1] if len(words) > 1 else None
             elif words[0] == "f":
-                corners = []
+                corners, corner_normal = [], []
                 for word in words[1:]:
-                    index = int(word.split("/")[0])
+                    parts = word.split("/")
+                    index = int(parts[0])
                     corners.append(index - 1 if index > 0 else len(vertices) + index)
+                    n = int(parts[2]) if len(parts) > 2 and parts[2] else None
+                    corner_normal.append(None if n is None else (n - 1 if n > 0 else len(normals) + n))
                 for k in range(1, len(corners) - 1):
                     triangles.append((corners[0], corners[k], corners[k + 1]))
+                    corner_normals.append((corner_normal[0], corner_normal[k], corner_normal[k + 1]))
                     names.append(current)
-    return vertices, triangles, names, materials
+    return vertices, triangles, names, materials, normals, corner_normals
 
 
-def without_twins(triangles, names):
+def without_twins(triangles, names, corner_normals):
     """Drops exact duplicates (the same three vertices): CornellBox-Original has some. Cycles, which does not offset
     ray origins, would shadow a face with its own twin; Lueur lights it."""
-    seen, kept_triangles, kept_names = set(), [], []
-    for triangle, name in zip(triangles, names):
+    seen, kept_triangles, kept_names, kept_normals = set(), [], [], []
+    for triangle, name, normal in zip(triangles, names, corner_normals):
         key = frozenset(triangle)
         if len(key) < 3 or key in seen:
             continue
         seen.add(key)
         kept_triangles.append(triangle)
         kept_names.append(name)
-    return kept_triangles, kept_names
+        kept_normals.append(normal)
+    return kept_triangles, kept_names, kept_normals
 
 
 def sharp(nodes, kind, colour):
@@ -207,8 +216,8 @@ def main():
     camera = [float(v) for v in args.camera.split()]
     up = Vector([float(v) for v in args.up.split()])
 
-    vertices, triangles, names, materials = read_obj(args.obj)
-    triangles, names = without_twins(triangles, names)
+    vertices, triangles, names, materials, normals, corner_normals = read_obj(args.obj)
+    triangles, names, corner_normals = without_twins(triangles, names, corner_normals)
     print("render_cycles: %d vertices, %d triangles" % (len(vertices), len(triangles)))
 
     bpy.ops.wm.read_factory_settings(use_empty=True)
@@ -221,6 +230,13 @@ def main():
     slot_of = {slot: i for i, slot in enumerate(slots)}
     mesh.polygons.foreach_set("material_index", [slot_of[n or ""] for n in names])
     mesh.update()
+    # The file's normals where every corner has one, as Lueur shades with them (mirrors and glass reflect and
+    # refract about them): Blender's custom split normals, one per corner in the triangles' order.
+    if normals and all(n is not None for corners in corner_normals for n in corners):
+        mesh.use_auto_smooth = True
+        mesh.polygons.foreach_set("use_smooth", [True] * len(triangles))
+        mesh.normals_split_custom_set([normals[n] for corners in corner_normals for n in corners])
+        mesh.update()
     scene.collection.objects.link(bpy.data.objects.new("lueur-scene", mesh))
 
     world = bpy.data.worlds.new("black")

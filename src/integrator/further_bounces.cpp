@@ -62,9 +62,9 @@ Vec3 next_event(const TracedScene& traced, const SurfacePoint& v, const Material
   return eval_brdf(m, v.albedo, v.shading_normal, wi, v.wo, blinn_k) * e.ke * (cos_surface * weight / pdf);
 }
 
-/// One path from p: its light beyond L1 and L2.
+/// One path from p: its light beyond L1 and L2. `first`, when given, is its first segment, already traced.
 Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSettings& settings, int bounces_before,
-                PixelSampler& sampler, uint64_t& rays) {
+                PixelSampler& sampler, uint64_t& rays, const SharedBounce* first) {
   const Scene& scene = traced.scene;
   Vec3 light(0.0f), throughput(1.0f);
   SurfacePoint v = p;
@@ -93,7 +93,13 @@ Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSe
       throughput /= survival;
     }
     Vec3 dir(0.0f);
-    if (lobes && specular.lobe != SpecularLobe::kBase) {
+    if (vertex == 0 && first) {
+      if (!first->open) break;
+      dir = first->ray.dir;
+      throughput *= eval_brdf(m, v.albedo, v.shading_normal, dir, v.wo, settings.blinn_k) * kPi;
+      bounce_pdf = glm::dot(v.shading_normal, dir) * kInvPi;
+      after_specular = false;
+    } else if (lobes && specular.lobe != SpecularLobe::kBase) {
       if (specular.lobe == SpecularLobe::kNone) break;
       dir = specular.dir;
       throughput *= specular.weight;
@@ -109,9 +115,16 @@ Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSe
       after_specular = false;
     }
     if (!(std::max({throughput.r, throughput.g, throughput.b}) > 0.0f)) break;
-    const Ray ray = leaving_ray(v.position, v.geometric_normal, dir);
-    ++rays;
-    const Hit hit = intersect_closest(traced.accel, ray);
+    Ray ray;
+    Hit hit;
+    if (vertex == 0 && first) {
+      ray = first->ray;
+      hit = first->hit;
+    } else {
+      ray = leaving_ray(v.position, v.geometric_normal, dir);
+      ++rays;
+      hit = intersect_closest(traced.accel, ray);
+    }
     ++bounces;
     if (!hit.found()) break;
     v = make_surface_point(scene, ray, hit);
@@ -134,13 +147,13 @@ Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSe
 
 Vec3 estimate_further_bounces(const TracedScene& traced, const SurfacePoint& p, const RenderSettings& settings,
                               int bounces_before, PixelSampler& sampler, uint64_t first_sample,
-                              uint64_t& rays_traced) {
+                              uint64_t& rays_traced, const SharedBounce* shared, int shared_count) {
   if (settings.ln_rays <= 0 || bounces_before + 2 > settings.max_bounces) return Vec3(0.0f);
   if (!reflects_light(traced.scene.material_of(p.triangle))) return Vec3(0.0f);
   Vec3 sum(0.0f);
   for (int k = 0; k < settings.ln_rays; ++k) {
     sampler.start_sample(first_sample + static_cast<uint64_t>(k));
-    sum += trace_path(traced, p, settings, bounces_before, sampler, rays_traced);
+    sum += trace_path(traced, p, settings, bounces_before, sampler, rays_traced, k < shared_count ? &shared[k] : nullptr);
   }
   return sum / static_cast<float>(settings.ln_rays);
 }

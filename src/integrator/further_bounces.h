@@ -10,6 +10,7 @@
 
 #include "core/pixel_sampler.h"
 #include "passes/render_settings.h"
+#include "integrator/indirect_light.h"
 #include "integrator/traced_scene.h"
 
 namespace lueur {
@@ -19,8 +20,10 @@ namespace lueur {
 /// settings.max_bounces in all. Vertex v of a path draws dimensions 4v to 4v + 3 of its sample, whatever happened
 /// before it. A specular material at p scatters by its Lambert base alone (the camera's path chose it). The
 /// head-light is left out. Adds the rays it traced to `rays_traced`.
+/// Path k < `shared_count` starts along L2's bounce k (`shared[k]`, indirect_light.h) instead of a direction of its
+/// own: the same cosine-weighted distribution, one ray fewer.
 Vec3 estimate_further_bounces(const TracedScene& traced, const SurfacePoint& p, const RenderSettings& settings,
                               int bounces_before, PixelSampler& sampler, uint64_t first_sample,
-                              uint64_t& rays_traced);
+                              uint64_t& rays_traced, const SharedBounce* shared = nullptr, int shared_count = 0);
 
 }  // namespace lueur

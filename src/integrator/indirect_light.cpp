@@ -223,7 +223,8 @@ Vec3 bounce_contribution(const Material& material, const SurfacePoint& sp, const
 IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& camera, const ScreenBuffer& screen,
                                        const SurfacePoint& sp, const RenderSettings& settings,
                                        PixelSampler& bounce_sampler, PixelSampler& recompute_sampler,
-                                       uint64_t first_sample, uint64_t& rays_traced, const L1CacheAccess* cache) {
+                                       uint64_t first_sample, uint64_t& rays_traced, const L1CacheAccess* cache,
+                                       SharedBounce* shared, int shared_count) {
   IndirectResult result;
   if (settings.l2_rays <= 0) return result;
   const Scene& scene = traced.scene;
@@ -260,11 +261,16 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
     const int count = std::min(kSampleBatch, settings.l2_rays - batch_start);
     directions.draw(bounce_sampler, first_sample + static_cast<uint64_t>(batch_start), count);
     for (size_t k = 0; k < static_cast<size_t>(count); ++k) {
-      if (!directions.open(k)) continue;
+      const int index = batch_start + static_cast<int>(k);
+      if (!directions.open(k)) {
+        if (index < shared_count) shared[index].open = false;
+        continue;
+      }
       const Ray ray = directions.ray(k);
       ++rays_traced;
       ++result.bounce_rays;
       const Hit hit = intersect_closest(traced.accel, ray);
+      if (index < shared_count) shared[index] = SharedBounce{true, ray, hit};
       if (!hit.found()) continue;
       // A black q (a light, the rig's sky) has L1(q) = 0: nothing to look up, trace or count among the bounce hits
       // that the screen, the store or a recomputation serve.

@@ -40,6 +40,14 @@ struct IndirectResult {
   int cached = 0;              ///< bounce hits that took L1 from the store
 };
 
+/// One of L2's bounce rays as it left p and what it met: where ln's path of the same index starts (its first
+/// segment shared, not traced twice).
+struct SharedBounce {
+  bool open = false;  ///< false: the direction dipped below p's surface and was not traced
+  Ray ray;
+  Hit hit;  ///< not found(): the ray met nothing
+};
+
 /// The screen pixel whose primary ray hit q, or -1: q projects into it, its primary ray hit q's triangle, and its
 /// hit lies within 1.5 pixel footprints of q, measured on the triangle's plane (`q_normal`: its normal, of any length).
 int find_reusable_pixel(const Camera& camera, const ScreenBuffer& screen, uint32_t triangle, const Vec3& q,
@@ -55,11 +63,14 @@ int find_reusable_pixel(const Camera& camera, const ScreenBuffer& screen, uint32
 /// arriving light becomes a record for the store, or, where the cell is missing and the store full there
 /// (L1Cache::refuses_new_cell), with recompute_rays and no record (bounce b's shadow rays are its samples b x
 /// max(recompute_rays, kL1CacheFillRays) onwards).
+/// `shared[k]` receives bounce k's ray and hit for k < `shared_count` (at most kSampleBatch and l2_rays): the
+/// first segments of ln's paths.
 IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& camera, const ScreenBuffer& screen,
                                        const SurfacePoint& sp, const RenderSettings& settings,
                                        PixelSampler& bounce_sampler, PixelSampler& recompute_sampler,
                                        uint64_t first_sample, uint64_t& rays_traced,
-                                       const L1CacheAccess* cache = nullptr);
+                                       const L1CacheAccess* cache = nullptr, SharedBounce* shared = nullptr,
+                                       int shared_count = 0);
 
 /// Ambient occlusion: Kd times the fraction of `rays` cosine rays (samples `first_sample` onwards) that travel
 /// farther than `radius`, the light of a uniform white sky that nearby geometry blocks.

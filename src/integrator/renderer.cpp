@@ -1,7 +1,8 @@
 // One frame in two phases over the tiles. Phase 1: a jittered primary ray per pixel, followed through mirrors and
-// glass to the pixel's p (camera_path.h), Le along the way, L1, AO and ln at p, and the screen buffer L2 reuses. Phase 2: L2, which may read any pixel's phase-1 L1. Results go to per-frame
-// buffers and are added to the film only once the whole frame has finished, so a cancelled frame leaves no trace
-// and every pixel's sums see the same sequence of additions whatever the thread count.
+// glass to the pixel's p (camera_path.h), Le along the way, L1 and AO at p, and the screen buffer L2 reuses.
+// Phase 2: L2, which may read any pixel's phase-1 L1, and ln, whose paths start along L2's bounce rays. Results go
+// to per-frame buffers and are added to the film only once the whole frame has finished, so a cancelled frame
+// leaves no trace and every pixel's sums see the same sequence of additions whatever the thread count.
 #include "integrator/renderer.h"
 
 #include <algorithm>
@@ -156,15 +157,20 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
                                                       ambient_occlusion_radius(traced, settings), sampler,
                                                       first_sample_of_run(frame, settings.ao_rays), rays));
   }
-  if (settings.pass_enabled(Pass::kLn)) {
-    PixelSampler sampler(settings.sampler, settings.seed, pixel, frame, RngPurpose::kPath);
-    set_layer(out, Layer::kLn, i,
-              throughput * estimate_further_bounces(traced, sp, settings, path.bounces, sampler,
-                                                    first_sample_of_run(frame, settings.ln_rays), rays));
-  }
 }
 
-/// Phase 2 for one pixel.
+/// ln at pixel i's p, weighted by the camera path's throughput.
+void trace_further_bounces(const TracedScene& traced, const RenderSettings& settings, const SurfacePoint& sp,
+                           const PathToP& path, size_t i, uint64_t frame, FrameBuffers& out, uint64_t& rays,
+                           const SharedBounce* shared, int shared_count) {
+  PixelSampler sampler(settings.sampler, settings.seed, i, frame, RngPurpose::kPath);
+  set_layer(out, Layer::kLn, i,
+            path.throughput * estimate_further_bounces(traced, sp, settings, path.bounces, sampler,
+                                                       first_sample_of_run(frame, settings.ln_rays), rays, shared,
+                                                       shared_count));
+}
+
+/// Phase 2 for one pixel: L2, and ln, whose first paths start along L2's first bounce rays.
 void trace_indirect(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, int x, int y,
                     uint64_t frame, FrameBuffers& out, uint64_t& rays, uint64_t& bounce_rays, uint64_t& bounce_hits,
                     uint64_t& reused, uint64_t& cached, const L1Cache* store, const L1CacheGrid* grid,
@@ -173,7 +179,16 @@ void trace_indirect(const TracedScene& traced, const Camera& camera, const Rende
   const SurfacePoint& sp = out.hits[i];
   if (sp.triangle == kNoHit) return;
   const PathToP& path = out.paths[i];
-  if (path.bounces + 1 > settings.max_bounces) return;  // L2's bounce would be one too many
+  if (path.bounces + 1 > settings.max_bounces) return;  // L2's bounce would be one too many, and ln's
+  const bool ln = settings.pass_enabled(Pass::kLn);
+  std::array<SharedBounce, kSampleBatch> shared;
+  const int shared_count = settings.pass_enabled(Pass::kL2) && ln
+                               ? std::min({settings.ln_rays, settings.l2_rays, kSampleBatch})
+                               : 0;
+  if (!settings.pass_enabled(Pass::kL2)) {  // ln alone: its paths leave along bounces of their own
+    trace_further_bounces(traced, settings, sp, path, i, frame, out, rays, nullptr, 0);
+    return;
+  }
   PixelSampler bounce_sampler(settings.sampler, settings.seed, i, frame, RngPurpose::kIndirect);
   PixelSampler recompute_sampler(settings.sampler, settings.seed, i, frame, RngPurpose::kRecompute);
   Pcg32 jitter(0, 0);
@@ -182,9 +197,10 @@ void trace_indirect(const TracedScene& traced, const Camera& camera, const Rende
     jitter = make_pixel_rng(settings.seed, i, frame, RngPurpose::kCacheLookup);
     access = L1CacheAccess{store, grid, &jitter, records};
   }
-  const IndirectResult r =
-      estimate_indirect_light(traced, camera, out.screen, sp, settings, bounce_sampler, recompute_sampler,
-                              first_sample_of_run(frame, settings.l2_rays), rays, store ? &access : nullptr);
+  const IndirectResult r = estimate_indirect_light(traced, camera, out.screen, sp, settings, bounce_sampler,
+                                                   recompute_sampler, first_sample_of_run(frame, settings.l2_rays),
+                                                   rays, store ? &access : nullptr, shared.data(), shared_count);
+  if (ln) trace_further_bounces(traced, settings, sp, path, i, frame, out, rays, shared.data(), shared_count);
   set_layer(out, Layer::kL2, i, path.throughput * r.l2);
   set_layer(out, Layer::kL2Reused, i, path.throughput * r.from_reused);
   set_layer(out, Layer::kL2Recomputed, i, path.throughput * r.from_recomputed);
@@ -310,7 +326,7 @@ FrameResult render_frame(const TracedScene& traced, const Camera& camera, const 
     trace_primary(traced, camera, settings, film, x, y, frame, buffers, c.rays, c.primary_rays, store ? &grid : nullptr,
                   store ? tile_records(0, x, y) : nullptr);
   });
-  if (settings.pass_enabled(Pass::kL2)) {
+  if (settings.pass_enabled(Pass::kL2) || settings.pass_enabled(Pass::kLn)) {
     const Clock::time_point l2_start = Clock::now();
     for_each_tile(pool, width, height, cancel, [&](int x, int y, int worker) {
       WorkerCounters& c = counters[static_cast<size_t>(worker)];

@@ -27,7 +27,7 @@ struct FrameResult {
   uint64_t l2_reused = 0;        ///< of those, how many reused L1 from the screen
   uint64_t l2_cached = 0;        ///< of those, how many took L1 from the L1 store
   L1CacheStats cache;            ///< the L1 store after this frame's merge (empty without a store mode)
-  double l2_seconds = 0.0;       ///< wall time of the L2 phase
+  double l2_seconds = 0.0;       ///< wall time of the second phase: L2, and ln when it is on
   bool completed = true;         ///< false when `cancel` stopped it early (the film is then left untouched)
   uint64_t dropped_samples = 0;  ///< pixel values not added to the film: not finite, or too large for the film
 };

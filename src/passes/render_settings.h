@@ -50,7 +50,7 @@ struct RenderSettings {
                                    ///< 0 or less: automatic (cache_cell_pixels_in_use)
   int cache_mb = 256;              ///< the L1 store's memory cap, in MiB
   int ao_rays = 16;
-  int ln_rays = 4;  ///< paths per pixel per frame that carry the light of the second and later bounces (ln)
+  int ln_rays = 8;  ///< paths per pixel per frame that carry the light of the second and later bounces (ln)
   /// Scattering events a path may have, counted as Cycles counts them: every diffuse, glossy, mirror or glass
   /// bounce, the camera's specular ones included. 1 is Le + L1 + L2 (ln then carries nothing).
   int max_bounces = 8;
