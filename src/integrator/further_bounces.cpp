@@ -62,15 +62,28 @@ Vec3 next_event(const TracedScene& traced, const SurfacePoint& v, const Material
   return eval_brdf(m, v.albedo, v.shading_normal, wi, v.wo, blinn_k) * e.ke * (cos_surface * weight / pdf);
 }
 
+/// L1 at vertex v from the screen pixel that sees it, where the reuse rules of further_bounces.h allow it.
+bool l1_from_screen(const Scene& scene, const RenderSettings& settings, const ScreenAccess& access,
+                    const SurfacePoint& v, const Material& m, Vec3& l1) {
+  if (m.diffuse_texture >= 0 || !brdf_is_constant(m, settings.blinn_k, v.shading_normal, v.wo)) return false;
+  const int pixel = find_reusable_pixel(*access.camera, *access.screen, v.triangle, v.position,
+                                        scene.geometric_normal_raw(v.triangle));
+  if (pixel < 0) return false;
+  const auto i = static_cast<size_t>(pixel);
+  l1 = settings.reuse == ReuseMode::kAverage ? access.screen->l1_average[i] : access.screen->pixels[i].l1;
+  return true;
+}
+
 /// One path from p: its light beyond L1 and L2. `first`, when given, is its first segment, already traced.
 Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSettings& settings, int bounces_before,
-                PixelSampler& sampler, uint64_t& rays, const SharedBounce* first) {
+                PixelSampler& sampler, uint64_t& rays, const SharedBounce* first, const ScreenAccess* screen) {
   const Scene& scene = traced.scene;
   Vec3 light(0.0f), throughput(1.0f);
   SurfacePoint v = p;
   int bounces = bounces_before;  // scattering events before v
   bool after_specular = false;   // v was reached along a specular direction
   float bounce_pdf = 0.0f;       // otherwise, the solid-angle pdf of the direction that reached it
+  bool whole_l1 = false;         // the vertex before v took its L1 whole (from the screen): v's emission is in it
   for (uint32_t vertex = 0;; ++vertex) {
     const Material& m = scene.material_of(v.triangle);
     const uint32_t pair = kPairsPerVertex * vertex;
@@ -82,10 +95,18 @@ Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSe
     const bool lobes = vertex > 0 && m.is_specular();
     if (lobes)
       specular = sample_specular(m, v.albedo, v.shading_normal, v.geometric_normal, v.wo, v.front_face, lobe_u.x);
-    if (vertex >= 2 && reflects_light(m))
-      light += throughput * next_event(traced, v, m, settings.blinn_k, lobes ? specular.base_probability : 1.0f,
-                                       scatters, sampler.get_2d_of_dimension(pair + 2),
-                                       sampler.get_2d_of_dimension(pair + 3), rays);
+    whole_l1 = false;
+    if (vertex >= 2 && reflects_light(m)) {
+      Vec3 l1(0.0f);
+      if (screen && !lobes && l1_from_screen(scene, settings, *screen, v, m, l1)) {
+        light += throughput * l1;
+        whole_l1 = true;
+      } else {
+        light += throughput * next_event(traced, v, m, settings.blinn_k, lobes ? specular.base_probability : 1.0f,
+                                         scatters, sampler.get_2d_of_dimension(pair + 2),
+                                         sampler.get_2d_of_dimension(pair + 3), rays);
+      }
+    }
     if (!scatters) break;
     if (vertex >= kRouletteVertex) {
       const float survival = std::min(1.0f, std::max({throughput.r, throughput.g, throughput.b}));
@@ -133,7 +154,7 @@ Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSe
       const uint32_t reached = vertex + 1;
       if (after_specular && reached >= 2) {
         light += throughput * mv.ke;
-      } else if (!after_specular && reached >= 3) {
+      } else if (!after_specular && reached >= 3 && !whole_l1) {
         const float cos_light = glm::dot(v.geometric_normal, v.wo);
         const float light_pdf = power_point_density(traced.lights, mv.ke) * hit.t * hit.t / cos_light;
         light += throughput * mv.ke * power_heuristic(bounce_pdf, light_pdf);
@@ -147,13 +168,15 @@ Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSe
 
 Vec3 estimate_further_bounces(const TracedScene& traced, const SurfacePoint& p, const RenderSettings& settings,
                               int bounces_before, PixelSampler& sampler, uint64_t first_sample,
-                              uint64_t& rays_traced, const SharedBounce* shared, int shared_count) {
+                              uint64_t& rays_traced, const SharedBounce* shared, int shared_count,
+                              const ScreenAccess* screen) {
   if (settings.ln_rays <= 0 || bounces_before + 2 > settings.max_bounces) return Vec3(0.0f);
   if (!reflects_light(traced.scene.material_of(p.triangle))) return Vec3(0.0f);
   Vec3 sum(0.0f);
   for (int k = 0; k < settings.ln_rays; ++k) {
     sampler.start_sample(first_sample + static_cast<uint64_t>(k));
-    sum += trace_path(traced, p, settings, bounces_before, sampler, rays_traced, k < shared_count ? &shared[k] : nullptr);
+    sum += trace_path(traced, p, settings, bounces_before, sampler, rays_traced, k < shared_count ? &shared[k] : nullptr,
+                      screen);
   }
   return sum / static_cast<float>(settings.ln_rays);
 }

@@ -22,8 +22,19 @@ namespace lueur {
 /// head-light is left out. Adds the rays it traced to `rays_traced`.
 /// Path k < `shared_count` starts along L2's bounce k (`shared[k]`, indirect_light.h) instead of a direction of its
 /// own: the same cosine-weighted distribution, one ray fewer.
+///
+/// With `screen` (the reuse modes that read it), a vertex past q that the camera sees directly, on a surface whose
+/// BRDF is the same toward every direction (Lambert, or the report's mix without a lobe), takes its L1 whole from
+/// the pixel that sees it, as L2 does at q (the report's reuse, one bounce further), instead of one shadow ray; the
+/// emitter its bounce direction meets then counts for nothing, as in L2. Not with --reuse-diffuse-only, the
+/// head-light (in the screen's L1, not in ln) or a colour map.
+struct ScreenAccess {
+  const Camera* camera = nullptr;
+  const ScreenBuffer* screen = nullptr;
+};
 Vec3 estimate_further_bounces(const TracedScene& traced, const SurfacePoint& p, const RenderSettings& settings,
                               int bounces_before, PixelSampler& sampler, uint64_t first_sample,
-                              uint64_t& rays_traced, const SharedBounce* shared = nullptr, int shared_count = 0);
+                              uint64_t& rays_traced, const SharedBounce* shared = nullptr, int shared_count = 0,
+                              const ScreenAccess* screen = nullptr);
 
 }  // namespace lueur

@@ -160,14 +160,18 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
 }
 
 /// ln at pixel i's p, weighted by the camera path's throughput.
-void trace_further_bounces(const TracedScene& traced, const RenderSettings& settings, const SurfacePoint& sp,
-                           const PathToP& path, size_t i, uint64_t frame, FrameBuffers& out, uint64_t& rays,
-                           const SharedBounce* shared, int shared_count) {
+void trace_further_bounces(const TracedScene& traced, const Camera& camera, const RenderSettings& settings,
+                           const SurfacePoint& sp, const PathToP& path, size_t i, uint64_t frame, FrameBuffers& out,
+                           uint64_t& rays, const SharedBounce* shared, int shared_count) {
   PixelSampler sampler(settings.sampler, settings.seed, i, frame, RngPurpose::kPath);
+  // The screen's L1, where the reuse mode reads it and holds all of L1 from the scene's emitters alone.
+  const ScreenAccess access{&camera, &out.screen};
+  const bool screen = settings.pass_enabled(Pass::kL2) && uses_screen(settings.reuse) &&
+                      !settings.reuse_diffuse_only && !settings.camera_light;
   set_layer(out, Layer::kLn, i,
             path.throughput * estimate_further_bounces(traced, sp, settings, path.bounces, sampler,
                                                        first_sample_of_run(frame, settings.ln_rays), rays, shared,
-                                                       shared_count));
+                                                       shared_count, screen ? &access : nullptr));
 }
 
 /// Phase 2 for one pixel: L2, and ln, whose first paths start along L2's first bounce rays.
@@ -186,7 +190,7 @@ void trace_indirect(const TracedScene& traced, const Camera& camera, const Rende
                                ? std::min({settings.ln_rays, settings.l2_rays, kSampleBatch})
                                : 0;
   if (!settings.pass_enabled(Pass::kL2)) {  // ln alone: its paths leave along bounces of their own
-    trace_further_bounces(traced, settings, sp, path, i, frame, out, rays, nullptr, 0);
+    trace_further_bounces(traced, camera, settings, sp, path, i, frame, out, rays, nullptr, 0);
     return;
   }
   PixelSampler bounce_sampler(settings.sampler, settings.seed, i, frame, RngPurpose::kIndirect);
@@ -200,7 +204,7 @@ void trace_indirect(const TracedScene& traced, const Camera& camera, const Rende
   const IndirectResult r = estimate_indirect_light(traced, camera, out.screen, sp, settings, bounce_sampler,
                                                    recompute_sampler, first_sample_of_run(frame, settings.l2_rays),
                                                    rays, store ? &access : nullptr, shared.data(), shared_count);
-  if (ln) trace_further_bounces(traced, settings, sp, path, i, frame, out, rays, shared.data(), shared_count);
+  if (ln) trace_further_bounces(traced, camera, settings, sp, path, i, frame, out, rays, shared.data(), shared_count);
   set_layer(out, Layer::kL2, i, path.throughput * r.l2);
   set_layer(out, Layer::kL2Reused, i, path.throughput * r.from_reused);
   set_layer(out, Layer::kL2Recomputed, i, path.throughput * r.from_recomputed);
