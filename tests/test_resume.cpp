@@ -61,11 +61,11 @@ TEST_P(Resume, AKilledRenderResumedGivesTheUninterruptedBytes) {
   EXPECT_EQ(read_file(part), read_file(whole)) << "the resumed image differs from the uninterrupted one";
 }
 
-// PFM and EXR hold the float sums; PNG goes through the tone map; the store carries state from frame to frame; an
-// A/B split resumes both sides.
+// PFM and EXR hold the float sums (the EXR every pass, ln too); PNG goes through the tone map; the store carries
+// state from frame to frame; an A/B split resumes both sides.
 INSTANTIATE_TEST_SUITE_P(Outputs, Resume,
                          ::testing::Values(ResumeCase{"pfm", "", "pfm"},
-                                           ResumeCase{"exr", "--passes le,l1,l2,ao", "exr"},
+                                           ResumeCase{"exr", "--passes le,l1,l2,ao,ln --ln-rays 2", "exr"},
                                            ResumeCase{"png_sobol", "--sampler sobol", "png"},
                                            ResumeCase{"store", "--reuse screen+cache", "pfm"},
                                            ResumeCase{"split", "--compare lights=uniform", "png"}),

@@ -68,7 +68,7 @@ Row size_row() {
 }
 
 Row passes_row() {
-  Row row = base_row("passes", "le,l1,l2,ao", "the passes rendered, comma-separated", SettingEffect::kRestart);
+  Row row = base_row("passes", "le,l1,l2,ao,ln", "the passes rendered, comma-separated", SettingEffect::kRestart);
   row.parse = [](Settings& s, const std::string& text) {
     s.render.enabled.fill(false);
     for (const std::string& name : split(text, ',')) {
