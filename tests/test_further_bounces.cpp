@@ -36,7 +36,8 @@ std::array<double, kPassCount> pass_means(const TracedScene& traced, const Camer
 
 const CameraSpec kInside{Vec3(0.1f, 0.2f, 0.0f), Vec3(-1, -0.5f, -0.3f), Vec3(0, 1, 0), 90.0f};
 
-RenderSettings closed_sphere_settings(int max_bounces) {
+/// Every light pass on (AO off), Lambert everywhere, few rays of each kind.
+RenderSettings light_passes(int max_bounces) {
   RenderSettings settings;
   settings.width = settings.height = 12;
   settings.enabled = {true, true, true, false, true};
@@ -56,7 +57,7 @@ double expected_ln(int max_bounces) {
 TEST(FurtherBounces, InAClosedEmittingSphereLnIsTheSeriesFromTheThirdBounceOn) {
   const auto traced = prepare_scene(test::make_closed_emitting_sphere(1.0f, 32, 16, Vec3(kRho), Vec3(kLe)));
   for (const int n : {2, 3, 8, 1024}) {  // 1024: no cap that matters (rho^1023 is nothing)
-    const auto means = pass_means(*traced, kInside, closed_sphere_settings(n), 64);
+    const auto means = pass_means(*traced, kInside, light_passes(n), 64);
     EXPECT_NEAR(means[static_cast<size_t>(Pass::kLn)], expected_ln(n), 0.01 * expected_ln(n)) << n << " bounces";
     // The report's passes keep their meaning beside it.
     EXPECT_NEAR(means[static_cast<size_t>(Pass::kL1)], kRho * kLe, 0.01 * kRho * kLe);
@@ -67,7 +68,7 @@ TEST(FurtherBounces, InAClosedEmittingSphereLnIsTheSeriesFromTheThirdBounceOn) {
     }
   }
   // ln alone: its paths leave along bounces of their own instead of L2's, to the same value.
-  RenderSettings alone = closed_sphere_settings(8);
+  RenderSettings alone = light_passes(8);
   alone.enabled = {false, false, false, false, true};
   const double ln_alone = pass_means(*traced, kInside, alone, 64)[static_cast<size_t>(Pass::kLn)];
   EXPECT_NEAR(ln_alone, expected_ln(8), 0.01 * expected_ln(8)) << "without L2";
@@ -93,12 +94,9 @@ TEST(FurtherBounces, ALampSeenOnlyInAMirrorLightsTheFloorInLn) {
   add_quad(s, Vec3(-1, -1, 1), Vec3(1, -1, 1), Vec3(1, 1, 1), Vec3(-1, 1, 1), 2);          // facing up
   collect_emitters(s);
   const auto traced = prepare_scene(s);
-  RenderSettings settings;
+  RenderSettings settings = light_passes(2);
   settings.width = settings.height = 8;
-  settings.enabled = {true, true, true, false, true};
-  settings.blinn_k = 1.0f;
   settings.ln_rays = 64;
-  settings.max_bounces = 2;
   // Looking down at floor points about x = 5, beyond twice the lamp's half-width: none of their rays toward the
   // mirror's image of the lamp passes through the lamp.
   const CameraSpec view{Vec3(5, 0, 1.5f), Vec3(5, 0, 0), Vec3(0, 1, 0), 8.0f};
@@ -122,14 +120,14 @@ TEST(FurtherBounces, ALampSeenOnlyInAMirrorLightsTheFloorInLn) {
 
 TEST(FurtherBounces, OneBounceIsLeL1AndL2AndLnCarriesNothing) {
   const auto traced = prepare_scene(test::make_closed_emitting_sphere(1.0f, 32, 16, Vec3(kRho), Vec3(kLe)));
-  const auto means = pass_means(*traced, kInside, closed_sphere_settings(1), 4);
+  const auto means = pass_means(*traced, kInside, light_passes(1), 4);
   EXPECT_EQ(means[static_cast<size_t>(Pass::kLn)], 0.0);
   EXPECT_GT(means[static_cast<size_t>(Pass::kL2)], 0.0);
 }
 
 TEST(FurtherBounces, AreTheSameBytesForAnyThreadCount) {
   const auto traced = prepare_scene(test::make_closed_emitting_sphere(1.0f, 16, 8, Vec3(kRho), Vec3(kLe)));
-  RenderSettings settings = closed_sphere_settings(6);
+  RenderSettings settings = light_passes(6);
   settings.width = 20;
   settings.height = 18;
   for (const SamplerKind sampler : {SamplerKind::kIndependent, SamplerKind::kSobol}) {

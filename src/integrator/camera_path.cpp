@@ -30,7 +30,7 @@ CameraPath follow_camera_path(const TracedScene& traced, const Ray& ray, int max
     const float u = sampler.get_2d_of_dimension(first_dimension + static_cast<uint32_t>(path.bounces)).x;
     const SpecularSample s =
         sample_specular(material, sp.albedo, sp.shading_normal, sp.geometric_normal, sp.wo, sp.front_face, u);
-    if (path.bounces == 0) path.through_specular = true;
+    path.through_specular = true;
     if (s.lobe == SpecularLobe::kBase) {
       // p is this surface, its Lambert base alone (brdf.h), weighted by 1 / the base's probability.
       path.throughput *= s.weight;

@@ -52,18 +52,6 @@ inline bool by_solid_angle(float area, float height, float distance2) {
   return (height > 0.0f) & (close | large);
 }
 
-/// Whether the light point at `origin + to_point` is unoccluded: one shadow ray from `origin`, stopping just short of
-/// the point (kShadowReach), counted in `rays_traced`.
-bool light_reaches(const TracedScene& traced, const Vec3& origin, const Vec3& to_point, uint64_t& rays_traced) {
-  Ray shadow;
-  shadow.origin = origin;
-  shadow.dir = to_point;
-  shadow.tmin = 0.0f;
-  shadow.tmax = kShadowReach;
-  ++rays_traced;
-  return !intersect_any(traced.accel, shadow);
-}
-
 /// A point on emitter `light` whose direction from `origin` (the surface point's leaving origin) is uniform over the
 /// triangle's solid angle. Returns cos_surface x solid_angle, or 0 where the point cannot light the surface; `point`
 /// and `wi` receive the point and the unit direction to it. The triangle is seen from the leaving origin, not from
@@ -265,6 +253,16 @@ bool batches_points(const LightTable& table, const DirectLightOptions& options) 
 }
 
 }  // namespace
+
+bool light_reaches(const TracedScene& traced, const Vec3& origin, const Vec3& to_point, uint64_t& rays_traced) {
+  Ray shadow;
+  shadow.origin = origin;
+  shadow.dir = to_point;
+  shadow.tmin = 0.0f;
+  shadow.tmax = kShadowReach;
+  ++rays_traced;
+  return !intersect_any(traced.accel, shadow);
+}
 
 Vec3 estimate_direct_light(const TracedScene& traced, const SurfacePoint& sp, const DirectLightOptions& options,
                            PixelSampler& sampler, uint64_t first_sample, uint64_t& rays_traced, Vec3* diffuse_part,

@@ -12,6 +12,10 @@ namespace lueur {
 /// short of the light itself.
 inline constexpr float kShadowReach = 1.0f - 1e-4f;
 
+/// Whether the light point at `origin + to_point` is unoccluded: one shadow ray from `origin`, stopping just short of
+/// the point (kShadowReach), counted in `rays_traced`.
+bool light_reaches(const TracedScene& traced, const Vec3& origin, const Vec3& to_point, uint64_t& rays_traced);
+
 struct DirectLightOptions {
   LightStrategy strategy = LightStrategy::kArea;
   int rays = 16;  ///< samples; with kAll each sample sends one shadow ray to every emitter

@@ -46,13 +46,8 @@ Vec3 next_event(const TracedScene& traced, const SurfacePoint& v, const Material
   const float cos_light = -glm::dot(e.normal, wi);
   const float cos_surface = glm::dot(v.shading_normal, wi);
   if (cos_light <= 0.0f || cos_surface <= 0.0f || glm::dot(v.geometric_normal, wi) <= 0.0f) return Vec3(0.0f);
-  Ray shadow;
-  shadow.origin = leaving_origin(v);
-  shadow.dir = point - shadow.origin;
-  shadow.tmin = 0.0f;
-  shadow.tmax = kShadowReach;
-  ++rays;
-  if (intersect_any(traced.accel, shadow)) return Vec3(0.0f);
+  const Vec3 origin = leaving_origin(v);
+  if (!light_reaches(traced, origin, point - origin, rays)) return Vec3(0.0f);
   const float pdf = choice.pmf / e.area * distance2 / cos_light;  // solid angle, as sampled
   float weight = 1.0f;
   if (weigh) {
@@ -69,8 +64,7 @@ bool l1_from_screen(const Scene& scene, const RenderSettings& settings, const Sc
   const int pixel = find_reusable_pixel(*access.camera, *access.screen, v.triangle, v.position,
                                         scene.geometric_normal_raw(v.triangle));
   if (pixel < 0) return false;
-  const auto i = static_cast<size_t>(pixel);
-  l1 = settings.reuse == ReuseMode::kAverage ? access.screen->l1_average[i] : access.screen->pixels[i].l1;
+  l1 = access.screen->reused_l1(static_cast<size_t>(pixel), settings.reuse);
   return true;
 }
 
@@ -131,7 +125,8 @@ Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSe
       dir = Frame::from_normal(v.shading_normal).to_world(local);
       if (!(local.z > 0.0f) || glm::dot(dir, v.geometric_normal) <= 0.0f) break;
       // f cos / pdf: the base's albedo / its probability, or f pi for a BRDF sampled by its cosine.
-      throughput *= lobes ? specular.weight : eval_brdf(m, v.albedo, v.shading_normal, dir, v.wo, settings.blinn_k) * kPi;
+      throughput *=
+          lobes ? specular.weight : eval_brdf(m, v.albedo, v.shading_normal, dir, v.wo, settings.blinn_k) * kPi;
       bounce_pdf = (lobes ? specular.base_probability : 1.0f) * local.z * kInvPi;
       after_specular = false;
     }
@@ -175,8 +170,8 @@ Vec3 estimate_further_bounces(const TracedScene& traced, const SurfacePoint& p, 
   Vec3 sum(0.0f);
   for (int k = 0; k < settings.ln_rays; ++k) {
     sampler.start_sample(first_sample + static_cast<uint64_t>(k));
-    sum += trace_path(traced, p, settings, bounces_before, sampler, rays_traced, k < shared_count ? &shared[k] : nullptr,
-                      screen);
+    const SharedBounce* first = k < shared_count ? &shared[k] : nullptr;
+    sum += trace_path(traced, p, settings, bounces_before, sampler, rays_traced, first, screen);
   }
   return sum / static_cast<float>(settings.ln_rays);
 }

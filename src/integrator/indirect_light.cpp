@@ -314,7 +314,7 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
         if (b.pixel >= 0 && pixel_saw_q(camera, screen, b.pixel, b.hit.triangle, b.q_position,
                                         scene.geometric_normal_raw(b.hit.triangle))) {
           const auto i = static_cast<size_t>(b.pixel);
-          l1_q = settings.reuse == ReuseMode::kAverage ? screen.l1_average[i] : screen.pixels[i].l1;
+          l1_q = screen.reused_l1(i, settings.reuse);
           // On a colour map the pixel's texel need not be q's: L1 scales with the albedo, channel by channel.
           reused = scene.material_of(b.hit.triangle).diffuse_texture < 0 ||
                    rescale_to_albedo(screen.pixels[i].albedo, scene.albedo(b.hit.triangle, b.hit.u, b.hit.v), l1_q);

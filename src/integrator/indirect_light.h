@@ -27,6 +27,10 @@ struct ScreenBuffer {
   std::vector<ScreenPixel> pixels;
   std::vector<Vec3> l1_average;  ///< running L1 average including this frame (reuse = average only)
   void resize(int w, int h);
+  /// The L1 a bounce hit on pixel `i`'s surface takes under `reuse` (a mode that reads the screen).
+  const Vec3& reused_l1(size_t i, ReuseMode reuse) const {
+    return reuse == ReuseMode::kAverage ? l1_average[i] : pixels[i].l1;
+  }
 };
 
 struct IndirectResult {

@@ -45,8 +45,8 @@ void set_layer(FrameBuffers& frame, Layer layer, size_t pixel, const Vec3& value
   if (!values.empty()) values[pixel] = value;
 }
 
-/// Le by `settings.le_rays` camera rays of their own, each followed through mirrors and glass (when there are more than one): the sum of the emission they
-/// see. Emission is cheap to see and its edges are the sharpest in the image, so they get more camera rays per frame
+/// Le by `settings.le_rays` camera rays of their own (when there are more than one), each followed through mirrors
+/// and glass: the sum of the emission they see. Emission is cheap to see and its edges are the sharpest in the image, so they get more camera rays per frame
 /// than the shading does. They are one aligned block of one sequence per frame, not the pixel's primary ray plus
 /// le_rays - 1 others: the primary's jitter is a sequence of its own (over frames), and three of each block of four
 /// points are no net: a frame's missing point left Le's error falling as 1 / frames, where whole nets fall faster.

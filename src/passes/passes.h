@@ -37,7 +37,8 @@ enum class Layer : int {
 };
 inline constexpr int kLayerCount = 11;
 inline constexpr std::array<std::string_view, kLayerCount> kLayerNames = {
-    "le", "l1", "l2", "ao", "ln", "l2-reused", "l2-recomputed", "reuse-fraction", "l1-diffuse", "l2-cached", "cache-cells"};
+    "le", "l1", "l2", "ao", "ln", "l2-reused", "l2-recomputed", "reuse-fraction", "l1-diffuse", "l2-cached",
+    "cache-cells"};
 inline constexpr Layer layer_of(Pass p) { return static_cast<Layer>(static_cast<int>(p)); }
 
 /// Finds `name` in a name table; nullopt when it is not there.

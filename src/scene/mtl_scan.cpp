@@ -69,8 +69,8 @@ size_t first_binary_line(string_view text) {
 int checked_illum(string_view rest, const std::string& where, std::vector<std::string>& warnings) {
   const string_view token = next_token(rest);
   float value = 0.0f;
-  if (parse_float(token, value) == NumberStatus::ok && value == std::floor(value) && known_illum(static_cast<int>(value)))
-    return static_cast<int>(value);
+  const bool number = parse_float(token, value) == NumberStatus::ok && value == std::floor(value);
+  if (number && known_illum(static_cast<int>(value))) return static_cast<int>(value);
   warnings.push_back(where + "illum value '" + printable(token) + "' is not an illumination model (0-10): using " +
                      std::to_string(kDefaultIllum));
   return kDefaultIllum;

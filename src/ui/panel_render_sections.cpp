@@ -13,7 +13,7 @@ void passes_section(PanelModel& m) {
   Settings& v = m.settings;
   static const char* const kLabels[kPassCount] = {"Le  (emission seen)", "L1  (direct light)",
                                                   "L2  (one-bounce indirect)", "AO  (ambient occlusion)",
-                                                  "Ln  (second and later bounces)"};
+                                                  "Ln  (further bounces)"};
   for (int p = 0; p < kPassCount; ++p) {
     const size_t i = static_cast<size_t>(p);
     ImGui::PushID(p);
