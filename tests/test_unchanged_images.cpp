@@ -1,7 +1,9 @@
 // Mirrors, glass and the further-bounce pass changed nothing else: a scene without a mirror or glass, rendered with
 // ln off, gives the bytes the version before them gave (commit 8be0810, the same compiler and settings), on the
 // default scene and CornellBox-Original, with the defaults and with the store, the head-light's absence, AO and one
-// Le ray. The figures are FNV-1a hashes of the PFM files that version wrote.
+// Le ray. The figures are FNV-1a hashes of the PFM files that version wrote; the store's case was written again
+// when its cells began to keep learning (issue 51: a share of the hits on a ready cell feed it), which changes its
+// images on purpose.
 #include <gtest/gtest.h>
 
 #include "core/byte_stream.h"
@@ -17,8 +19,8 @@ struct Case {
 
 constexpr Case kCases[] = {
     {"--size 64x48 --frames 5", 0xe29da6c4345bbc21ull, 0x8489646deadb458dull},
-    {"--size 64x48 --frames 3 --le-rays 1 --passes le,l1,l2,ao --reuse screen+cache", 0xba1f01879d76bdd9ull,
-     0x39d960998a1fbfbcull},
+    {"--size 64x48 --frames 3 --le-rays 1 --passes le,l1,l2,ao --reuse screen+cache", 0xbbe38f0340321f8aull,
+     0xfbae31b6502e3014ull},
 };
 
 uint64_t render_hash(const std::string& scene, const std::string& options, const std::string& out) {

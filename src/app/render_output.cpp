@@ -52,6 +52,10 @@ void write_gl_screenshot(const AppOptions& options, const Settings& described, c
     panel.stats.l2_bounce_hits = figures.tally.bounce_hits;
     panel.stats.l2_reused = figures.tally.reused;
     panel.stats.l2_cached = figures.tally.cached;
+    panel.stats.ln_lookups = figures.tally.ln_lookups;
+    panel.stats.ln_reused = figures.tally.ln_reused;
+    panel.stats.ln_cached = figures.tally.ln_cached;
+    panel.stats.served = figures.tally.served;
     panel.stats.cache = figures.cache;
     panel.noise = estimate_film_noise(film, options.settings.render.enabled, options.settings.weights,
                                       options.settings.render.sampler);
@@ -119,6 +123,10 @@ void FrameTally::add(const FrameTally& other) {
   bounce_hits += other.bounce_hits;
   reused += other.reused;
   cached += other.cached;
+  ln_lookups += other.ln_lookups;
+  ln_reused += other.ln_reused;
+  ln_cached += other.ln_cached;
+  served.add(other.served);
   dropped += other.dropped;
   l2_seconds += other.l2_seconds;
   left_seconds += other.left_seconds;
@@ -142,6 +150,10 @@ FrameResult render_frame_pair(const TracedScene& traced, const Camera& camera, c
   tally.bounce_hits += frame.l2_bounce_hits;
   tally.reused += frame.l2_reused;
   tally.cached += frame.l2_cached;
+  tally.ln_lookups += frame.ln_lookups;
+  tally.ln_reused += frame.ln_reused;
+  tally.ln_cached += frame.ln_cached;
+  tally.served.add(frame.served_samples);
   tally.dropped += frame.dropped_samples;
   tally.l2_seconds += frame.l2_seconds;
   return frame;
@@ -348,6 +360,20 @@ void print_run_summary(const AppOptions& options, const Film& film, const Film* 
                  static_cast<unsigned long long>(figures.cache.cells),
                  static_cast<double>(figures.cache.bytes) / (1 << 20), settings.cache_mb,
                  figures.cache.full ? " (full: new cells refused)" : "");
+    if (figures.tally.served.total > 0)
+      std::fprintf(stderr, "lueur: L1 store: the cells that served held %u samples (median), %u (10th percentile)\n",
+                   figures.tally.served.percentile(0.5), figures.tally.served.percentile(0.1));
+  }
+  if (settings.pass_enabled(Pass::kLn) && figures.tally.ln_lookups > 0) {
+    const auto share = [&](uint64_t n) {
+      return 100.0 * static_cast<double>(n) / static_cast<double>(figures.tally.ln_lookups);
+    };
+    std::fprintf(stderr,
+                 "lueur: ln: %.1f M vertices past the first bounce needed L1: %.1f%% from the screen, %.1f%% from "
+                 "the L1 store, %.1f%% traced\n",
+                 static_cast<double>(figures.tally.ln_lookups) * 1e-6, share(figures.tally.ln_reused),
+                 share(figures.tally.ln_cached),
+                 share(figures.tally.ln_lookups - figures.tally.ln_reused - figures.tally.ln_cached));
   }
   if (right) {
     print_side("left (as set)", film, options.settings, figures.tally.left_seconds);

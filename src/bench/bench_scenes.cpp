@@ -2,6 +2,7 @@
 #include "bench/bench_scenes.h"
 
 #include <filesystem>
+#include <optional>
 #include <random>
 
 #include "scene/default_scene.h"
@@ -96,6 +97,49 @@ BenchScene from_file(const std::string& name, const std::string& path, bool insi
 
 }  // namespace
 
+BenchScene make_room_facing_wall() {
+  BenchScene room;
+  room.name = "room";
+  Scene& scene = room.scene;
+  scene.name = room.name;
+  const auto material = [&](const char* name, Vec3 kd, Vec3 ke) {
+    Material m;
+    m.name = name;
+    m.kd = kd;
+    m.ke = ke;
+    scene.materials.push_back(m);
+    return static_cast<uint32_t>(scene.materials.size() - 1);
+  };
+  const uint32_t white = material("white", Vec3(0.7f), Vec3(0.0f)),
+                 red = material("red", Vec3(0.7f, 0.15f, 0.1f), Vec3(0.0f)),
+                 green = material("green", Vec3(0.15f, 0.6f, 0.15f), Vec3(0.0f)),
+                 light = material("panel", Vec3(0.0f), Vec3(12.0f));
+  // Every face counter-clockwise as seen from inside, so that its normal points into the room.
+  const float x0 = -2.0f, x1 = 2.0f, y0 = 0.0f, y1 = 3.0f, z0 = -3.0f, z1 = 3.0f;
+  add_quad(scene, {x0, y0, z0}, {x0, y0, z1}, {x1, y0, z1}, {x1, y0, z0}, white);  // floor
+  add_quad(scene, {x0, y1, z0}, {x1, y1, z0}, {x1, y1, z1}, {x0, y1, z1}, white);  // ceiling
+  add_quad(scene, {x0, y0, z0}, {x0, y1, z0}, {x0, y1, z1}, {x0, y0, z1}, red);    // left wall
+  add_quad(scene, {x1, y0, z0}, {x1, y0, z1}, {x1, y1, z1}, {x1, y1, z0}, green);  // right wall
+  add_quad(scene, {x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0}, white);  // back wall, behind the camera
+  add_quad(scene, {x0, y0, z1}, {x0, y1, z1}, {x1, y1, z1}, {x1, y0, z1}, white);  // the wall the camera faces
+  // A block on the floor behind the camera: shadows where only bounce rays go. Its faces point outwards.
+  const Vec3 lo(-1.5f, 0.0f, -1.5f), hi(-0.3f, 1.2f, -0.4f);
+  add_quad(scene, {lo.x, hi.y, lo.z}, {lo.x, hi.y, hi.z}, {hi.x, hi.y, hi.z}, {hi.x, hi.y, lo.z}, white);  // top
+  add_quad(scene, {lo.x, lo.y, lo.z}, {lo.x, lo.y, hi.z}, {lo.x, hi.y, hi.z}, {lo.x, hi.y, lo.z}, white);  // -x
+  add_quad(scene, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {hi.x, lo.y, hi.z}, white);  // +x
+  add_quad(scene, {lo.x, lo.y, lo.z}, {lo.x, hi.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, lo.y, lo.z}, white);  // -z
+  add_quad(scene, {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}, white);  // +z
+  // The panel, just under the ceiling behind the camera, facing down.
+  const float y = y1 - 0.01f;
+  add_quad(scene, {-0.5f, y, -2.6f}, {0.5f, y, -2.6f}, {0.5f, y, -1.8f}, {-0.5f, y, -1.8f}, light);
+  collect_emitters(scene);
+  room.lights = scene.emitters;
+  room.view.eye = Vec3(0.0f, 1.5f, 1.2f);
+  room.view.target = Vec3(0.0f, 1.4f, 3.0f);
+  room.view.fovy_degrees = 40.0f;
+  return room;
+}
+
 int spheres_for(size_t triangles) { return std::max(1, static_cast<int>(triangles / kTrianglesPerSphere)); }
 
 BenchScene make_sphere_field(int spheres, uint32_t seed) {
@@ -127,37 +171,60 @@ BenchScene make_sphere_field(int spheres, uint32_t seed) {
   return field;
 }
 
+namespace {
+
+struct SharedScene {
+  const char* name;
+  const char* path;
+  bool inside;  ///< a closed room: the camera and a light go inside
+  bool in_quick;
+  bool listed;  ///< in load_bench_scenes' list (otherwise only by its name)
+};
+constexpr SharedScene kSharedScenes[] = {
+    {"cornell-water", "cornell-water/CornellBox-Water.obj", false, false, true},
+    {"stanford-bunny", "stanford-bunny/stanford-bunny.obj", false, true, true},
+    {"conference", "conference/conference.obj", true, false, true},
+    {"cornell-original", "cornell-original/CornellBox-Original.obj", false, false, false}};
+
+/// The shared scene, or nothing (its reason appended to `skipped`) where the folder or the file is missing.
+std::optional<BenchScene> load_shared(const SharedScene& s, const std::string& shared_dir,
+                                      std::vector<std::string>& skipped) {
+  const std::filesystem::path path = std::filesystem::path(shared_dir) / s.path;
+  std::error_code ec;
+  if (shared_dir.empty() || !std::filesystem::exists(path, ec)) {
+    skipped.push_back(std::string(s.name) +
+                      (shared_dir.empty() ? " (no shared scenes folder)" : " (" + path.string() + " not found)"));
+    return std::nullopt;
+  }
+  return from_file(s.name, path.string(), s.inside);
+}
+
+}  // namespace
+
+BenchScene make_default_bench_scene() {
+  BenchScene b;
+  b.name = "default";
+  b.scene = make_default_scene();
+  compute_smooth_normals(b.scene);
+  b.view = default_scene_camera();
+  b.lights = b.scene.emitters;
+  return b;
+}
+
+std::optional<BenchScene> load_shared_bench_scene(const std::string& name, const std::string& shared_dir,
+                                                  std::vector<std::string>& skipped) {
+  for (const SharedScene& s : kSharedScenes)
+    if (name == s.name) return load_shared(s, shared_dir, skipped);
+  return std::nullopt;
+}
+
 std::vector<BenchScene> load_bench_scenes(bool quick, const std::string& shared_dir,
                                           std::vector<std::string>& skipped) {
   std::vector<BenchScene> scenes;
-  {
-    BenchScene b;
-    b.name = "default";
-    b.scene = make_default_scene();
-    compute_smooth_normals(b.scene);
-    b.view = default_scene_camera();
-    b.lights = b.scene.emitters;
-    scenes.push_back(std::move(b));
-  }
-  struct SharedScene {
-    const char* name;
-    const char* path;
-    bool inside;  ///< a closed room: the camera and a light go inside
-    bool in_quick;
-  };
-  const SharedScene shared[] = {{"cornell-water", "cornell-water/CornellBox-Water.obj", false, false},
-                                {"stanford-bunny", "stanford-bunny/stanford-bunny.obj", false, true},
-                                {"conference", "conference/conference.obj", true, false}};
-  for (const SharedScene& s : shared) {
-    if (quick && !s.in_quick) continue;
-    const std::filesystem::path path = std::filesystem::path(shared_dir) / s.path;
-    std::error_code ec;
-    if (shared_dir.empty() || !std::filesystem::exists(path, ec)) {
-      skipped.push_back(std::string(s.name) +
-                        (shared_dir.empty() ? " (no shared scenes folder)" : " (" + path.string() + " not found)"));
-      continue;
-    }
-    scenes.push_back(from_file(s.name, path.string(), s.inside));
+  scenes.push_back(make_default_bench_scene());
+  for (const SharedScene& s : kSharedScenes) {
+    if (!s.listed || (quick && !s.in_quick)) continue;
+    if (std::optional<BenchScene> b = load_shared(s, shared_dir, skipped)) scenes.push_back(std::move(*b));
   }
   scenes.push_back(make_sphere_field(spheres_for(quick ? 100000 : 2000000), 7));
   return scenes;

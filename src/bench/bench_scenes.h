@@ -3,6 +3,7 @@
 // Depends on the scene and camera layers.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,8 +24,21 @@ struct BenchScene {
 /// seen from above one corner.
 BenchScene make_sphere_field(int spheres, uint32_t seed);
 
+/// A closed room (4 x 3 x 6, a block on its floor) seen from inside facing its far wall from close by, lit by a
+/// ceiling panel behind the camera: nearly every bounce ray from the wall the camera sees lands on a surface it does
+/// not see (issue 51's test of the L1 store).
+BenchScene make_room_facing_wall();
+
 /// Spheres for about `triangles` triangles.
 int spheres_for(size_t triangles);
+
+/// The default scene with its view.
+BenchScene make_default_bench_scene();
+
+/// One of the shared scenes by its benchmark name (cornell-water, stanford-bunny, conference, cornell-original), or
+/// nothing where it is missing (the reason appended to `skipped`) or not one of them.
+std::optional<BenchScene> load_shared_bench_scene(const std::string& name, const std::string& shared_dir,
+                                                  std::vector<std::string>& skipped);
 
 /// The benchmark's scene list. `quick`: the default scene, the bunny, and a 100k-triangle sphere field; otherwise
 /// every scene named in the README's table that is present, and the 2M-triangle field. `shared_dir` may be empty

@@ -57,20 +57,55 @@ Vec3 next_event(const TracedScene& traced, const SurfacePoint& v, const Material
   return eval_brdf(m, v.albedo, v.shading_normal, wi, v.wo, blinn_k) * e.ke * (cos_surface * weight / pdf);
 }
 
-/// L1 at vertex v from the screen pixel that sees it, where the reuse rules of further_bounces.h allow it.
-bool l1_from_screen(const Scene& scene, const RenderSettings& settings, const ScreenAccess& access,
-                    const SurfacePoint& v, const Material& m, Vec3& l1) {
-  if (m.diffuse_texture >= 0 || !brdf_is_constant(m, settings.blinn_k, v.shading_normal, v.wo)) return false;
-  const int pixel = find_reusable_pixel(*access.camera, *access.screen, v.triangle, v.position,
-                                        scene.geometric_normal_raw(v.triangle));
-  if (pixel < 0) return false;
-  l1 = access.screen->reused_l1(static_cast<size_t>(pixel), settings.reuse);
-  return true;
+/// Where a vertex's L1 came from.
+enum class WholeL1 { kNone, kScreen, kStore, kFed };
+
+/// L1 at vertex v taken whole, where further_bounces.h's rules allow it: from the store (read, or traced with the
+/// fill's rays and fed to it: samples of run `store_run`), else from the screen pixel that sees v.
+WholeL1 whole_l1_at(const TracedScene& traced, const RenderSettings& settings, const FurtherBounceReuse& reuse,
+                    const SurfacePoint& v, const Material& m, uint64_t store_run, uint64_t& rays, Vec3& l1) {
+  if (settings.camera_light || !brdf_is_constant(m, settings.blinn_k, v.shading_normal, v.wo)) return WholeL1::kNone;
+  if (reuse.store) {
+    const L1CacheAccess& store = *reuse.store;
+    const float u1 = store.jitter->next_float(), u2 = store.jitter->next_float();
+    const L1CacheKey key = jittered_key(*store.grid, v.position, v.geometric_normal, u1, u2);
+    const uint64_t hash = hash_of(key);
+    const L1CacheCell* cell = nullptr;
+    switch (use_of_store(store, key, hash, cell)) {
+      case StoreUse::kRead:
+        l1 = constant_brdf(m, v.albedo, settings.blinn_k) * (cell->sum / static_cast<float>(cell->samples));
+        return WholeL1::kStore;
+      case StoreUse::kFeed: {
+        DirectLightOptions fill;
+        fill.strategy = settings.lights == LightStrategy::kImportance ? LightStrategy::kPower : settings.lights;
+        fill.rays = kL1CacheFillRays;
+        fill.blinn_k = settings.blinn_k;
+        Vec3 arriving(0.0f);
+        l1 = estimate_direct_light(traced, v, fill, *reuse.store_sampler, first_sample_of_run(store_run, fill.rays),
+                                   rays, nullptr, &arriving);
+        store.records->push_back(make_l1_record(key, hash, arriving, static_cast<uint32_t>(fill.rays)));
+        return WholeL1::kFed;
+      }
+      case StoreUse::kTrace:
+        break;
+    }
+  }
+  if (reuse.screen && !settings.reuse_diffuse_only && m.diffuse_texture < 0) {
+    const int pixel = find_reusable_pixel(*reuse.camera, *reuse.screen, v.triangle, v.position,
+                                          traced.scene.geometric_normal_raw(v.triangle));
+    if (pixel >= 0) {
+      l1 = reuse.screen->reused_l1(static_cast<size_t>(pixel), settings.reuse);
+      return WholeL1::kScreen;
+    }
+  }
+  return WholeL1::kNone;
 }
 
 /// One path from p: its light beyond L1 and L2. `first`, when given, is its first segment, already traced.
+/// `path_sample`: the path's sample index, which numbers its runs of store-feeding shadow samples.
 Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSettings& settings, int bounces_before,
-                PixelSampler& sampler, uint64_t& rays, const SharedBounce* first, const ScreenAccess* screen) {
+                PixelSampler& sampler, uint64_t& rays, const SharedBounce* first, const FurtherBounceReuse& reuse,
+                uint64_t path_sample, FurtherBounces& counts) {
   const Scene& scene = traced.scene;
   Vec3 light(0.0f), throughput(1.0f);
   SurfacePoint v = p;
@@ -91,10 +126,16 @@ Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSe
       specular = sample_specular(m, v.albedo, v.shading_normal, v.geometric_normal, v.wo, v.front_face, lobe_u.x);
     whole_l1 = false;
     if (vertex >= 2 && reflects_light(m)) {
+      ++counts.lookups;
       Vec3 l1(0.0f);
-      if (screen && !lobes && l1_from_screen(scene, settings, *screen, v, m, l1)) {
+      const uint64_t store_run =
+          path_sample * kStoreRunsPerPath + std::min<uint64_t>(vertex - 2, kStoreRunsPerPath - 1);
+      const WholeL1 source = lobes ? WholeL1::kNone : whole_l1_at(traced, settings, reuse, v, m, store_run, rays, l1);
+      if (source != WholeL1::kNone) {
         light += throughput * l1;
         whole_l1 = true;
+        counts.from_screen += source == WholeL1::kScreen;
+        counts.from_store += source == WholeL1::kStore;
       } else {
         light += throughput * next_event(traced, v, m, settings.blinn_k, lobes ? specular.base_probability : 1.0f,
                                          scatters, sampler.get_2d_of_dimension(pair + 2),
@@ -161,19 +202,22 @@ Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSe
 
 }  // namespace
 
-Vec3 estimate_further_bounces(const TracedScene& traced, const SurfacePoint& p, const RenderSettings& settings,
-                              int bounces_before, PixelSampler& sampler, uint64_t first_sample,
-                              uint64_t& rays_traced, const SharedBounce* shared, int shared_count,
-                              const ScreenAccess* screen) {
-  if (settings.ln_rays <= 0 || bounces_before + 2 > settings.max_bounces) return Vec3(0.0f);
-  if (!reflects_light(traced.scene.material_of(p.triangle))) return Vec3(0.0f);
+FurtherBounces estimate_further_bounces(const TracedScene& traced, const SurfacePoint& p,
+                                        const RenderSettings& settings, int bounces_before, PixelSampler& sampler,
+                                        uint64_t first_sample, uint64_t& rays_traced, const SharedBounce* shared,
+                                        int shared_count, const FurtherBounceReuse& reuse) {
+  FurtherBounces result;
+  if (settings.ln_rays <= 0 || bounces_before + 2 > settings.max_bounces) return result;
+  if (!reflects_light(traced.scene.material_of(p.triangle))) return result;
   Vec3 sum(0.0f);
   for (int k = 0; k < settings.ln_rays; ++k) {
-    sampler.start_sample(first_sample + static_cast<uint64_t>(k));
+    const uint64_t sample = first_sample + static_cast<uint64_t>(k);
+    sampler.start_sample(sample);
     const SharedBounce* first = k < shared_count ? &shared[k] : nullptr;
-    sum += trace_path(traced, p, settings, bounces_before, sampler, rays_traced, first, screen);
+    sum += trace_path(traced, p, settings, bounces_before, sampler, rays_traced, first, reuse, sample, result);
   }
-  return sum / static_cast<float>(settings.ln_rays);
+  result.light = sum / static_cast<float>(settings.ln_rays);
+  return result;
 }
 
 }  // namespace lueur

@@ -23,18 +23,38 @@ namespace lueur {
 /// Path k < `shared_count` starts along L2's bounce k (`shared[k]`, indirect_light.h) instead of a direction of its
 /// own: the same cosine-weighted distribution, one ray fewer.
 ///
-/// With `screen` (the reuse modes that read it), a vertex past q that the camera sees directly, on a surface whose
-/// BRDF is the same toward every direction (Lambert, or the report's mix without a lobe), takes its L1 whole from
-/// the pixel that sees it, as L2 does at q (the report's reuse, one bounce further), instead of one shadow ray; the
-/// emitter its bounce direction meets then counts for nothing, as in L2. Not with --reuse-diffuse-only, the
-/// head-light (in the screen's L1, not in ln) or a colour map.
-struct ScreenAccess {
+/// Where ln's vertices past q may take their L1 whole instead of tracing a shadow ray, as L2 does at q; null
+/// members: not there. Only at vertices whose BRDF is the same toward every direction (Lambert, or the report's
+/// mix without a lobe), and never with the head-light (in the screen's and the store's L1, not in ln). The emitter
+/// such a vertex's bounce direction meets then counts for nothing, as in L2.
+///  - `store` (the store modes), asked first: a ready cell gives the light arriving there, times the vertex's
+///    albedo; a cell that is missing or not ready (or a hit of the learning share, l1_cache.h) is fed by an L1
+///    estimate of kL1CacheFillRays shadow rays from `store_sampler`, which the vertex then takes; where the full
+///    store would refuse the cell, the vertex traces its one shadow ray as without a store.
+///  - `screen` (the modes that read it): the pixel that sees the vertex directly gives its L1 (the report's reuse,
+///    one bounce further); not with --reuse-diffuse-only or on a colour map.
+struct FurtherBounceReuse {
   const Camera* camera = nullptr;
   const ScreenBuffer* screen = nullptr;
+  const L1CacheAccess* store = nullptr;
+  PixelSampler* store_sampler = nullptr;
 };
-Vec3 estimate_further_bounces(const TracedScene& traced, const SurfacePoint& p, const RenderSettings& settings,
-                              int bounces_before, PixelSampler& sampler, uint64_t first_sample,
-                              uint64_t& rays_traced, const SharedBounce* shared = nullptr, int shared_count = 0,
-                              const ScreenAccess* screen = nullptr);
+
+/// ln's light, and where its vertices past q took their L1: the counts the reuse statistics add to L2's.
+struct FurtherBounces {
+  Vec3 light{0.0f};
+  int lookups = 0;      ///< vertices past q that reflect light: each needs L1
+  int from_screen = 0;  ///< of those, how many took it from the screen
+  int from_store = 0;   ///< how many read it from a ready cell of the store
+};
+
+/// The runs of store-feeding shadow samples per path (one per vertex; vertices past the last share its run).
+inline constexpr int kStoreRunsPerPath = 8;
+
+FurtherBounces estimate_further_bounces(const TracedScene& traced, const SurfacePoint& p,
+                                        const RenderSettings& settings, int bounces_before, PixelSampler& sampler,
+                                        uint64_t first_sample, uint64_t& rays_traced,
+                                        const SharedBounce* shared = nullptr, int shared_count = 0,
+                                        const FurtherBounceReuse& reuse = {});
 
 }  // namespace lueur

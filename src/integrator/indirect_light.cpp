@@ -171,10 +171,11 @@ void key_for_store(const Scene& scene, const L1CacheAccess& cache, PendingBounce
 bool l1_from_ready_cell(const TracedScene& traced, PendingBounce& b, const RenderSettings& settings,
                         const DirectLightOptions& recompute, const L1CacheAccess& cache, PixelSampler& sampler,
                         uint64_t first_shadow_sample, uint64_t& rays_traced, Vec3& l1_q) {
-  const L1CacheCell* cell = cache.store->find(b.key, b.hash);
-  if (!cell || cell->samples < kL1CacheMinSamples) {
+  const L1CacheCell* cell = nullptr;
+  const StoreUse use = use_of_store(cache, b.key, b.hash, cell);
+  if (use != StoreUse::kRead) {
     // A cell that is there grows; a missing one is made at the frame's end unless the store is full there.
-    b.fills_store = cell || !cache.store->refuses_new_cell(b.hash);
+    b.fills_store = use == StoreUse::kFeed;
     return false;
   }
   const Vec3 arriving = cell->sum / static_cast<float>(cell->samples);

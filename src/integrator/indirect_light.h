@@ -63,8 +63,9 @@ int find_reusable_pixel(const Camera& camera, const ScreenBuffer& screen, uint32
 /// from `recompute_sampler` (bounce b's shadow rays are its samples b x recompute_rays onwards). Emission at q is
 /// not added: it is already L1 at p. With `cache` (the store modes), a hit the screen did not serve looks up its
 /// jittered cell: a cell with kL1CacheMinSamples samples gives the constant part of L1(q) (the rest of the BRDF is
-/// traced toward p, as --reuse-diffuse-only does); otherwise L1(q) is recomputed with kL1CacheFillRays rays and its
-/// arriving light becomes a record for the store, or, where the cell is missing and the store full there
+/// traced toward p, as --reuse-diffuse-only does), except at the learning share of its hits (use_of_store); otherwise
+/// L1(q) is recomputed with kL1CacheFillRays rays and its arriving light becomes a record for the store, or, where
+/// the cell is missing and the store full there
 /// (L1Cache::refuses_new_cell), with recompute_rays and no record (bounce b's shadow rays are its samples b x
 /// max(recompute_rays, kL1CacheFillRays) onwards).
 /// `shared[k]` receives bounce k's ray and hit for k < `shared_count` (at most kSampleBatch and l2_rays): the

@@ -159,26 +159,42 @@ void trace_primary(const TracedScene& traced, const Camera& camera, const Render
   }
 }
 
-/// ln at pixel i's p, weighted by the camera path's throughput.
-void trace_further_bounces(const TracedScene& traced, const Camera& camera, const RenderSettings& settings,
-                           const SurfacePoint& sp, const PathToP& path, size_t i, uint64_t frame, FrameBuffers& out,
-                           uint64_t& rays, const SharedBounce* shared, int shared_count) {
+/// ln at pixel i's p, weighted by the camera path's throughput. Its vertices past q may take their L1 from the store
+/// (`store`: the pixel's look-ups, the same as L2's) and the screen; their counts go to `counts`.
+FurtherBounces trace_further_bounces(const TracedScene& traced, const Camera& camera, const RenderSettings& settings,
+                                     const SurfacePoint& sp, const PathToP& path, size_t i, uint64_t frame,
+                                     FrameBuffers& out, uint64_t& rays, const SharedBounce* shared, int shared_count,
+                                     const L1CacheAccess* store) {
   PixelSampler sampler(settings.sampler, settings.seed, i, frame, RngPurpose::kPath);
-  // The screen's L1, where the reuse mode reads it and holds all of L1 from the scene's emitters alone.
-  const ScreenAccess access{&camera, &out.screen};
-  const bool screen = settings.pass_enabled(Pass::kL2) && uses_screen(settings.reuse) &&
-                      !settings.reuse_diffuse_only && !settings.camera_light;
-  set_layer(out, Layer::kLn, i,
-            path.throughput * estimate_further_bounces(traced, sp, settings, path.bounces, sampler,
-                                                       first_sample_of_run(frame, settings.ln_rays), rays, shared,
-                                                       shared_count, screen ? &access : nullptr));
+  PixelSampler store_sampler(settings.sampler, settings.seed, i, frame, RngPurpose::kPathStore);
+  FurtherBounceReuse reuse;
+  if (settings.pass_enabled(Pass::kL2) && uses_screen(settings.reuse)) {
+    reuse.camera = &camera;
+    reuse.screen = &out.screen;
+  }
+  if (store) {
+    reuse.store = store;
+    reuse.store_sampler = &store_sampler;
+  }
+  const FurtherBounces result =
+      estimate_further_bounces(traced, sp, settings, path.bounces, sampler,
+                               first_sample_of_run(frame, settings.ln_rays), rays, shared, shared_count, reuse);
+  set_layer(out, Layer::kLn, i, path.throughput * result.light);
+  return result;
 }
+
+/// Per-worker counters, padded apart so that workers do not share cache lines.
+struct alignas(64) WorkerCounters {
+  uint64_t rays = 0, primary_rays = 0, bounce_rays = 0, bounce_hits = 0, reused = 0, cached = 0;
+  uint64_t ln_lookups = 0, ln_reused = 0, ln_cached = 0;
+  ServedSamples served;
+};
 
 /// Phase 2 for one pixel: L2, and ln, whose first paths start along L2's first bounce rays.
 void trace_indirect(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, int x, int y,
-                    uint64_t frame, FrameBuffers& out, uint64_t& rays, uint64_t& bounce_rays, uint64_t& bounce_hits,
-                    uint64_t& reused, uint64_t& cached, const L1Cache* store, const L1CacheGrid* grid,
-                    std::vector<L1CacheRecord>* records) {
+                    uint64_t frame, FrameBuffers& out, WorkerCounters& counts, const L1Cache* store,
+                    const L1CacheGrid* grid, std::vector<L1CacheRecord>* records) {
+  uint64_t& rays = counts.rays;
   const size_t i = pixel_index(x, y, camera.width);
   const SurfacePoint& sp = out.hits[i];
   if (sp.triangle == kNoHit) return;
@@ -190,7 +206,7 @@ void trace_indirect(const TracedScene& traced, const Camera& camera, const Rende
                                ? std::min({settings.ln_rays, settings.l2_rays, kSampleBatch})
                                : 0;
   if (!settings.pass_enabled(Pass::kL2)) {  // ln alone: its paths leave along bounces of their own
-    trace_further_bounces(traced, camera, settings, sp, path, i, frame, out, rays, nullptr, 0);
+    trace_further_bounces(traced, camera, settings, sp, path, i, frame, out, rays, nullptr, 0, nullptr);
     return;
   }
   PixelSampler bounce_sampler(settings.sampler, settings.seed, i, frame, RngPurpose::kIndirect);
@@ -199,26 +215,34 @@ void trace_indirect(const TracedScene& traced, const Camera& camera, const Rende
   L1CacheAccess access;
   if (store) {
     jitter = make_pixel_rng(settings.seed, i, frame, RngPurpose::kCacheLookup);
-    access = L1CacheAccess{store, grid, &jitter, records};
+    access = L1CacheAccess{store, grid, &jitter, records, &counts.served};
   }
   const IndirectResult r = estimate_indirect_light(traced, camera, out.screen, sp, settings, bounce_sampler,
                                                    recompute_sampler, first_sample_of_run(frame, settings.l2_rays),
                                                    rays, store ? &access : nullptr, shared.data(), shared_count);
-  if (ln) trace_further_bounces(traced, camera, settings, sp, path, i, frame, out, rays, shared.data(), shared_count);
+  const FurtherBounces further = ln ? trace_further_bounces(traced, camera, settings, sp, path, i, frame, out, rays,
+                                                            shared.data(), shared_count, store ? &access : nullptr)
+                                    : FurtherBounces{};
   set_layer(out, Layer::kL2, i, path.throughput * r.l2);
   set_layer(out, Layer::kL2Reused, i, path.throughput * r.from_reused);
   set_layer(out, Layer::kL2Recomputed, i, path.throughput * r.from_recomputed);
   set_layer(out, Layer::kL2Cached, i, path.throughput * r.from_cached);
-  // Where the bounce hits took L1(q) from, as shares: red the screen, green the store, blue recomputed.
-  if (r.bounce_hits > 0) {
-    const auto share = [&](int n) { return static_cast<float>(n) / static_cast<float>(r.bounce_hits); };
+  // Where the bounce hits (L2's) and the vertices past them (ln's) took L1 from, as shares: red the screen, green
+  // the store, blue traced.
+  const int lookups = r.bounce_hits + further.lookups;
+  const int from_screen = r.reused + further.from_screen, from_store = r.cached + further.from_store;
+  if (lookups > 0) {
+    const auto share = [&](int n) { return static_cast<float>(n) / static_cast<float>(lookups); };
     set_layer(out, Layer::kReuseFraction, i,
-              Vec3(share(r.reused), share(r.cached), share(r.bounce_hits - r.reused - r.cached)));
+              Vec3(share(from_screen), share(from_store), share(lookups - from_screen - from_store)));
   }
-  bounce_rays += static_cast<uint64_t>(r.bounce_rays);
-  bounce_hits += static_cast<uint64_t>(r.bounce_hits);
-  reused += static_cast<uint64_t>(r.reused);
-  cached += static_cast<uint64_t>(r.cached);
+  counts.ln_lookups += static_cast<uint64_t>(further.lookups);
+  counts.ln_reused += static_cast<uint64_t>(further.from_screen);
+  counts.ln_cached += static_cast<uint64_t>(further.from_store);
+  counts.bounce_rays += static_cast<uint64_t>(r.bounce_rays);
+  counts.bounce_hits += static_cast<uint64_t>(r.bounce_hits);
+  counts.reused += static_cast<uint64_t>(r.reused);
+  counts.cached += static_cast<uint64_t>(r.cached);
 }
 
 /// Tiles across an image `size` pixels wide (or down one that high).
@@ -240,11 +264,6 @@ void for_each_tile(ThreadPool& pool, int width, int height, const std::atomic<bo
       for (int x = x0; x < x1; ++x) per_pixel(x, y, worker);
   });
 }
-
-/// Per-worker counters, padded apart so that workers do not share cache lines.
-struct alignas(64) WorkerCounters {
-  uint64_t rays = 0, primary_rays = 0, bounce_rays = 0, bounce_hits = 0, reused = 0, cached = 0;
-};
 
 }  // namespace
 
@@ -274,6 +293,9 @@ uint64_t frames_before_samples_repeat(const RenderSettings& settings) {
     // indirect_light.cpp: each bounce's shadow rays are a run as long as the longest estimate a bounce may trace.
     const int shadow_run = std::max(settings.recompute_rays(), uses_cache(settings.reuse) ? kL1CacheFillRays : 0);
     longest = std::max(longest, run(settings.l2_rays) * run(shadow_run));
+    // further_bounces.cpp: with the store, each path's vertices feed it from runs of kStoreRunsPerPath fills.
+    if (settings.pass_enabled(Pass::kLn) && uses_cache(settings.reuse))
+      longest = std::max(longest, run(settings.ln_rays) * run(kStoreRunsPerPath) * run(kL1CacheFillRays));
   }
   return (uint64_t{1} << 32) / longest;
 }
@@ -313,7 +335,11 @@ FrameResult render_frame(const TracedScene& traced, const Camera& camera, const 
   const int tiles = tile_count(width, height);
   std::vector<std::vector<L1CacheRecord>> records(store ? 2 * static_cast<size_t>(tiles) : 0);
   if (store) {
-    const int generation = l1_cache_generation(frame);
+    int generation = l1_cache_generation(frame);
+    // A store whose next generation would not fit keeps its cells, which go on learning, rather than refusing most
+    // of the smaller ones (their hits would be traced as without a store).
+    if (l1_store->generation >= 0 && generation > l1_store->generation && !l1_store->has_room_for_next_generation())
+      generation = l1_store->generation;
     if (l1_store->generation != generation) {
       l1_store->clear();
       l1_store->generation = generation;
@@ -334,9 +360,8 @@ FrameResult render_frame(const TracedScene& traced, const Camera& camera, const 
     const Clock::time_point l2_start = Clock::now();
     for_each_tile(pool, width, height, cancel, [&](int x, int y, int worker) {
       WorkerCounters& c = counters[static_cast<size_t>(worker)];
-      trace_indirect(traced, camera, settings, x, y, frame, buffers, c.rays, c.bounce_rays, c.bounce_hits, c.reused,
-                     c.cached, store ? l1_store : nullptr, store ? &grid : nullptr,
-                     store ? tile_records(1, x, y) : nullptr);
+      trace_indirect(traced, camera, settings, x, y, frame, buffers, c, store ? l1_store : nullptr,
+                     store ? &grid : nullptr, store ? tile_records(1, x, y) : nullptr);
     });
     result.l2_seconds = seconds_since(l2_start);
   }
@@ -347,6 +372,10 @@ FrameResult render_frame(const TracedScene& traced, const Camera& camera, const 
     result.l2_bounce_hits += c.bounce_hits;
     result.l2_reused += c.reused;
     result.l2_cached += c.cached;
+    result.ln_lookups += c.ln_lookups;
+    result.ln_reused += c.ln_reused;
+    result.ln_cached += c.ln_cached;
+    result.served_samples.add(c.served);
   }
 
   if (cancel && cancel->load()) {

@@ -26,7 +26,11 @@ struct FrameResult {
   uint64_t l2_bounce_hits = 0;   ///< L2 bounce rays that hit a surface
   uint64_t l2_reused = 0;        ///< of those, how many reused L1 from the screen
   uint64_t l2_cached = 0;        ///< of those, how many took L1 from the L1 store
+  uint64_t ln_lookups = 0;       ///< ln's vertices past q that needed L1 (further_bounces.h)
+  uint64_t ln_reused = 0;        ///< of those, how many took it from the screen
+  uint64_t ln_cached = 0;        ///< of those, how many read it from the L1 store
   L1CacheStats cache;            ///< the L1 store after this frame's merge (empty without a store mode)
+  ServedSamples served_samples;  ///< the samples of the store's cells that served this frame's hits
   double l2_seconds = 0.0;       ///< wall time of the second phase: L2, and ln when it is on
   bool completed = true;         ///< false when `cancel` stopped it early (the film is then left untouched)
   uint64_t dropped_samples = 0;  ///< pixel values not added to the film: not finite, or too large for the film

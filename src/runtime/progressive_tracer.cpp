@@ -228,6 +228,10 @@ void ProgressiveTracer::run() {
       stats_.l2_bounce_hits += result.l2_bounce_hits;
       stats_.l2_reused += result.l2_reused;
       stats_.l2_cached += result.l2_cached;
+      stats_.ln_lookups += result.ln_lookups;
+      stats_.ln_reused += result.ln_reused;
+      stats_.ln_cached += result.ln_cached;
+      stats_.served.add(result.served_samples);
       stats_.cache = result.cache;
       if (divisor == 1)
         stats_.frames = accumulation.film.frames;

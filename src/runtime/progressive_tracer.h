@@ -31,6 +31,8 @@ struct TracerStats {
   double last_frame_seconds = 0.0;
   double l2_seconds = 0.0;
   uint64_t l2_bounce_hits = 0, l2_reused = 0, l2_cached = 0;
+  uint64_t ln_lookups = 0, ln_reused = 0, ln_cached = 0;  ///< ln's vertices past q that needed L1, and their sources
+  ServedSamples served;  ///< the samples of the store's cells that served L2's and ln's look-ups
   L1CacheStats cache;  ///< the L1 store after the last frame
   /// Where the accumulation stops whatever the frame limit: further frames would repeat earlier ones
   /// (frames_before_samples_repeat).

@@ -89,6 +89,21 @@ uint64_t hash_of(const L1CacheKey& key) {
   return hash_combine(mix64(xy), z_rest);
 }
 
+uint32_t ServedSamples::percentile(double q) const {
+  if (total == 0) return 0;
+  const auto wanted = static_cast<uint64_t>(q * static_cast<double>(total));
+  uint64_t below = 0;
+  for (size_t i = 0; i < counts.size(); ++i) {
+    below += counts[i];
+    if (below > wanted) {
+      const int octave = static_cast<int>(i) / kPerOctave;
+      const uint32_t part = static_cast<uint32_t>(i) % kPerOctave;
+      return octave >= 3 ? (8u + part) << (octave - 3) : (8u + part) >> (3 - octave);
+    }
+  }
+  return 0;
+}
+
 int l1_cache_generation(uint64_t frame) {
   int generation = 0;
   for (uint64_t start = 4; frame >= start && generation < 30; start *= 8) ++generation;
@@ -213,6 +228,11 @@ void L1Cache::merge(const std::vector<std::vector<L1CacheRecord>>& batches, Thre
       insert(shard, *records[i]);
     }
   });
+}
+
+bool L1Cache::has_room_for_next_generation() const {
+  const uint64_t cells = stats().cells;
+  return 4 * cells <= static_cast<uint64_t>(kShards) * (max_cells_per_shard_ / 2);
 }
 
 L1CacheStats L1Cache::stats() const {

@@ -9,13 +9,14 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <vector>
 
 #include "core/byte_stream.h"
+#include "core/camera.h"
 #include "core/math.h"
 #include "core/rng.h"
-#include "core/camera.h"
 #include "core/thread_pool.h"
 
 namespace lueur {
@@ -94,6 +95,13 @@ inline constexpr uint32_t kL1CacheMinSamples = 16;
 /// fills served more of the hits and lowered L2's error, with diminishing returns past half of kL1CacheMinSamples.
 inline constexpr int kL1CacheFillRays = static_cast<int>(kL1CacheMinSamples) / 2;
 
+/// The share of the hits on a ready cell that trace L1 anew and feed it rather than read it (drawn from the
+/// pixel's look-up numbers, so that the image stays a pure function of the settings): without them a cell that
+/// only bounce rays reach (behind the camera, under a table) would keep its first kL1CacheMinSamples samples, and
+/// their error, for its whole generation. With a fixed share a cell's samples grow as the frames do, and its error
+/// falls as theirs. Chosen by L2's error after equal time (BENCHMARKS.md, "The L1 store by frames").
+inline constexpr float kL1CacheLearningShare = 0.0625f;
+
 /// The normal's dominant axis and sign, 0..5: surfaces that face apart (the two sides of a wall; a floor and the wall
 /// beside it) never share a cell.
 uint8_t normal_bucket(const Vec3& normal);
@@ -115,6 +123,29 @@ struct L1CacheStats {
   bool full = false;     ///< the cap has been reached
 };
 
+/// How many samples the cells held that served bounce hits: a histogram in eighths of an octave (within 9%), for
+/// the statistics of the panel and the benchmarks, not for rendering.
+struct ServedSamples {
+  static constexpr int kPerOctave = 8;
+  std::array<uint64_t, 32 * kPerOctave> counts{};
+  uint64_t total = 0;
+  void add(uint32_t samples) {
+    if (samples == 0) return;
+    const int octave = std::bit_width(samples) - 1;
+    // The kPerOctave-th parts of the octave: the bits after the leading one.
+    const uint32_t part = octave >= 3 ? (samples >> (octave - 3)) & 7u : (samples << (3 - octave)) & 7u;
+    ++counts[static_cast<size_t>(kPerOctave * octave) + part];
+    ++total;
+  }
+  void add(const ServedSamples& other) {
+    for (size_t i = 0; i < counts.size(); ++i) counts[i] += other.counts[i];
+    total += other.total;
+  }
+  /// The samples of the cell below which a share q of the served hits fell (the lower end of its eighth of an
+  /// octave); 0 when none was served.
+  uint32_t percentile(double q) const;
+};
+
 class L1Cache;
 
 /// What one pixel's L2 needs of the store in a frame: the store as the previous frame left it, the frame's grid,
@@ -124,6 +155,7 @@ struct L1CacheAccess {
   const L1CacheGrid* grid = nullptr;
   Pcg32* jitter = nullptr;
   std::vector<L1CacheRecord>* records = nullptr;
+  ServedSamples* served = nullptr;  ///< where the samples of each cell that serves a hit are counted (may be null)
 };
 
 class L1Cache {
@@ -163,6 +195,11 @@ class L1Cache {
   /// Adds the records, batch after batch and each batch in order; one shard per task on `pool`.
   void merge(const std::vector<std::vector<L1CacheRecord>>& batches, ThreadPool& pool);
 
+  /// Whether the next generation's cells, half the size and so about four times as many, would fit under the cap
+  /// (a shard takes cells up to half its largest table). Where they would not, the store keeps its generation:
+  /// most of the next one's cells would be refused, and their hits traced as without a store.
+  bool has_room_for_next_generation() const;
+
   L1CacheStats stats() const;
   /// The samples its cells hold, summed: a scan of every slot, for tests and tools (not per frame).
   uint64_t samples_held() const;
@@ -186,5 +223,20 @@ class L1Cache {
   std::array<Shard, kShards> shards_;
   size_t max_cells_per_shard_ = 0;
 };
+
+/// What a hit on the cell `key` does with the store: reads the cell (it is ready, and this hit is not one of the
+/// learning share), feeds it (traces L1 with kL1CacheFillRays and adds a record: the cell is missing, not ready, or
+/// this hit is one of kL1CacheLearningShare), or only traces L1 (a missing cell that the full store would refuse).
+/// Draws one of the pixel's look-up numbers where the cell is ready.
+enum class StoreUse { kRead, kFeed, kTrace };
+inline StoreUse use_of_store(const L1CacheAccess& access, const L1CacheKey& key, uint64_t hash,
+                             const L1CacheCell*& cell) {
+  cell = access.store->find(key, hash);
+  if (!cell) return access.store->refuses_new_cell(hash) ? StoreUse::kTrace : StoreUse::kFeed;
+  if (cell->samples < kL1CacheMinSamples) return StoreUse::kFeed;
+  if (access.jitter->next_float() < kL1CacheLearningShare) return StoreUse::kFeed;
+  if (access.served) access.served->add(cell->samples);
+  return StoreUse::kRead;
+}
 
 }  // namespace lueur
