@@ -15,6 +15,8 @@
 #include "bench/bench_rays.h"
 #include "bench/bench_scenes.h"
 #include "bench/bench_store.h"
+#include "bench/bench_store_frames.h"
+#include "bench/bench_store_ln.h"
 #include "bench/bench_throughput.h"
 #include "core/atomic_file.h"
 #include "scene/obj_loader.h"
@@ -43,6 +45,8 @@ struct BenchOptions {
   TimingOptions timing;
   ConvergenceOptions convergence;
   StoreOptions store;
+  StoreFramesOptions store_frames;
+  StoreLnOptions store_ln;
 };
 
 struct UsageError : std::runtime_error {
@@ -58,6 +62,9 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
   int store_size = 0;
   float store_cell_pixels = -1.0f;
   std::string store_conference_light;
+  uint64_t store_frames = 0, store_frames_reference = 0;
+  int store_frames_size = 0;
+  std::vector<std::string> store_frames_modes;
   app.add_flag("--quick", o.quick, "a reduced set that runs in under a minute");
   app.add_flag("--smoke", o.smoke, "a tiny run that only checks the plumbing (seconds; for the test suite)");
   app.add_option("--json", o.json_path, "write every figure to FILE as JSON")->type_name("FILE");
@@ -67,23 +74,28 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
   app.add_option("--rounds", o.rounds, "alternating timing rounds per figure (default 5; the median is kept)")
       ->type_name("N")
       ->check(checked_by(whole_number_error, {1, 1000}));
-  app.add_option("--sections", sections,
-                 "comma-separated: build,throughput,convergence (default), traversal (nodes per ray), frame (the "
-                 "renderer's rays per second against the same rays in the benchmark's arrays), store (the reuse "
-                 "modes and the L1 store raced on the default scene and the conference room)")
+  app.add_option(
+         "--sections", sections,
+         "comma-separated: build,throughput,convergence (default), traversal (nodes per ray), frame (the "
+         "renderer's rays per second against the same rays in the benchmark's arrays), store (the reuse "
+         "modes and the L1 store raced on the default scene and the conference room), store-frames (L2's error by "
+         "frames per reuse mode on those and a closed room facing a wall), store-ln (ln's error by time with and "
+         "without the L1 store on the conference room and CornellBox-Original)")
       ->type_name("LIST");
-  app.add_option("--store-seconds", store_seconds, "equal time per reuse mode in section store (default 60)")
+  app.add_option("--store-seconds", store_seconds,
+                 "equal time per reuse mode in sections store and store-ln (default 60)")
       ->type_name("SECONDS")
       ->check(checked_by(finite_number_error, {0.001, 100000.0}));
   app.add_option("--store-reference-seconds", store_reference_seconds,
-                 "time of each reference in section store (default 240)")
+                 "time of each reference in sections store (default 240) and store-ln (default 120)")
       ->type_name("SECONDS")
       ->check(checked_by(finite_number_error, {0.001, 100000.0}));
   app.add_option("--store-turn-seconds", store_turn_seconds,
                  "the reuse modes of section store take turns of this long, each on its own frames' clock (default 2)")
       ->type_name("SECONDS")
       ->check(checked_by(finite_number_error, {0.001, 100000.0}));
-  app.add_option("--store-size", store_size, "image side in pixels in section store (default 256)")
+  app.add_option("--store-size", store_size,
+                 "image side in pixels in sections store (default 256) and store-ln (default 64)")
       ->type_name("PIXELS")
       ->check(checked_by(whole_number_error, {8, 8192}));
   app.add_option("--store-cell-pixels", store_cell_pixels,
@@ -95,6 +107,24 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
                  "default) or rig (the panel of Lueur's default light rig, as the viewer lights the room)")
       ->type_name("bench|rig")
       ->check(CLI::IsMember({"bench", "rig"}));
+  app.add_option("--store-frames", store_frames, "frames per reuse mode in section store-frames (default 4096)")
+      ->type_name("N")
+      ->check(checked_by(whole_number_error, {64, 1 << 20}));
+  app.add_option("--store-frames-reference", store_frames_reference,
+                 "frames of each of the two references in section store-frames (default 8192)")
+      ->type_name("N")
+      ->check(checked_by(whole_number_error, {1, 1 << 22}));
+  app.add_option("--store-frames-references", o.store_frames.reference_dir,
+                 "keep section store-frames' references in DIR and read them from there when present")
+      ->type_name("DIR");
+  app.add_option("--store-frames-modes", store_frames_modes,
+                 "the reuse modes of section store-frames (default off,frame,cache,screen+cache)")
+      ->type_name("LIST")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"off", "frame", "average", "cache", "screen+cache"}));
+  app.add_option("--store-frames-size", store_frames_size, "image side in pixels in section store-frames (default 64)")
+      ->type_name("PIXELS")
+      ->check(checked_by(whole_number_error, {8, 8192}));
   app.add_option("--reference-frames", reference_frames, "frames of each convergence reference (default 128)")
       ->type_name("N")
       ->check(checked_by(whole_number_error, {1, 100000}));
@@ -120,8 +150,9 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
     std::string name;
     while (std::getline(in, name, ',')) {
       if (name != "build" && name != "throughput" && name != "traversal" && name != "convergence" && name != "frame" &&
-          name != "store")
-        throw UsageError("--sections: '" + name + "' is not one of build|throughput|traversal|convergence|frame|store");
+          name != "store" && name != "store-frames" && name != "store-ln")
+        throw UsageError("--sections: '" + name +
+                         "' is not one of build|throughput|traversal|convergence|frame|store|store-frames|store-ln");
       o.sections.insert(name);
     }
   }
@@ -138,18 +169,32 @@ std::optional<BenchOptions> parse(int argc, char** argv) {
     o.timing = {0.001, 1};
     o.convergence = {16, 16, 2, 0.001, 0, 1};
     o.store = {16, 0.02, 0.05, 0.01, 0};
+    o.store_frames.size = 8;
+    o.store_ln = {8, 0.05, 0.02, 0.01, 0};
+    o.store_frames.frames = 64;
+    o.store_frames.reference_frames = 16;
     o.scenes_dir.clear();
   }
   if (o.rounds > 0) o.timing.rounds = o.rounds;
   if (reference_frames > 0) o.convergence.reference_frames = reference_frames;
   if (convergence_seconds > 0.0) o.convergence.seconds = convergence_seconds;
   if (convergence_size > 0) o.convergence.width = o.convergence.height = convergence_size;
-  if (store_seconds > 0.0) o.store.seconds = store_seconds;
+  if (store_seconds > 0.0) o.store.seconds = o.store_ln.seconds = store_seconds;
+  if (store_reference_seconds > 0.0) o.store_ln.reference_seconds = store_reference_seconds;
+  if (store_size > 0) o.store_ln.size = store_size;
   if (store_reference_seconds > 0.0) o.store.reference_seconds = store_reference_seconds;
   if (store_size > 0) o.store.size = store_size;
   if (store_turn_seconds > 0.0) o.store.turn_seconds = store_turn_seconds;
   if (store_cell_pixels >= 0.0f) o.store.cell_pixels = store_cell_pixels;
   o.store.conference_rig = store_conference_light == "rig";
+  if (store_frames > 0) o.store_frames.frames = store_frames;
+  if (store_frames_reference > 0) o.store_frames.reference_frames = store_frames_reference;
+  if (store_frames_size > 0) o.store_frames.size = store_frames_size;
+  if (!store_frames_modes.empty()) {
+    o.store_frames.modes.clear();
+    for (const std::string& name : store_frames_modes)
+      o.store_frames.modes.push_back(*enum_from_name<ReuseMode>(kReuseModeNames, name));
+  }
   if (!o.json_path.empty()) {
     std::filesystem::path dir = std::filesystem::path(o.json_path).parent_path();
     if (dir.empty()) dir = ".";
@@ -300,12 +345,39 @@ int run(const BenchOptions& o) {
     for (const std::string& s : skipped) std::fprintf(stderr, "lueur-bench: skipped %s\n", s.c_str());
     store = run_store_comparison(scenes, o.store, stderr);
   }
+  Json store_frames = Json::array();
+  if (o.sections.count("store-frames")) {
+    std::vector<std::string> skipped;
+    std::vector<BenchScene> scenes;
+    scenes.push_back(make_default_bench_scene());
+    if (std::optional<BenchScene> conference = load_shared_bench_scene("conference", o.scenes_dir, skipped))
+      scenes.push_back(std::move(*conference));
+    scenes.push_back(make_room_facing_wall());
+    for (const std::string& s : skipped) std::fprintf(stderr, "lueur-bench: skipped %s\n", s.c_str());
+    if (!o.only.empty())
+      std::erase_if(scenes, [&](const BenchScene& b) { return b.name.find(o.only) == std::string::npos; });
+    store_frames = run_store_frames(scenes, o.store_frames, stderr);
+  }
+  Json store_ln = Json::array();
+  if (o.sections.count("store-ln")) {
+    std::vector<std::string> skipped;
+    std::vector<BenchScene> scenes;
+    for (const char* name : {"conference", "cornell-original"})
+      if (std::optional<BenchScene> b = load_shared_bench_scene(name, o.scenes_dir, skipped))
+        scenes.push_back(std::move(*b));
+    for (const std::string& s : skipped) std::fprintf(stderr, "lueur-bench: skipped %s\n", s.c_str());
+    if (!o.only.empty())
+      std::erase_if(scenes, [&](const BenchScene& b) { return b.name.find(o.only) == std::string::npos; });
+    store_ln = run_store_ln(scenes, o.store_ln, stderr);
+  }
 
   if (!o.json_path.empty()) {
     Json out{{"results", results}, {"build", builds}, {"convergence", convergence}};
     if (o.sections.count("traversal")) out["traversal"] = traversal;
     if (o.sections.count("frame")) out["frames"] = frames;
     if (o.sections.count("store")) out["store"] = store;
+    if (o.sections.count("store-frames")) out["store_frames"] = store_frames;
+    if (o.sections.count("store-ln")) out["store_ln"] = store_ln;
     write_file_atomically(o.json_path, out.dump(2) + "\n");
     std::printf("%s\n", o.json_path.c_str());
   }
