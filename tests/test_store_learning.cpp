@@ -211,7 +211,8 @@ TEST(StoreServesLn, InAClosedEmittingSphereLnReadsTheStoreToTheClosedForm) {
     std::printf("%s: ln %.4f (closed form %.4f); %.0f%% of its vertices read the store\n", name.c_str(), mean, expected,
                 100.0 * static_cast<double>(from_store) / static_cast<double>(lookups));
     EXPECT_NEAR(mean, expected, 0.01 * expected) << name;
-    EXPECT_GT(from_store, lookups / 2) << name;
+    // Its cells fill from L2's fills and ln's own shadow rays: a good share of the vertices read them already.
+    EXPECT_GT(from_store, lookups / 5) << name;
   }
 }
 

@@ -54,7 +54,6 @@ enum class RngPurpose : uint64_t {
   kCacheFeed = 7,    ///< where a primary hit's L1 goes into the L1 store (the jitter within a cell)
   kCacheLookup = 8,  ///< where L2's bounce hits look up (and feed) the L1 store
   kPath = 9,         ///< ln's paths: the second and later bounces
-  kPathStore = 10,   ///< the shadow rays with which ln's vertices feed the L1 store
 };
 
 /// The stream of one pixel in one frame for one purpose.

@@ -29,9 +29,11 @@ float power_heuristic(float pdf, float other) {
 /// Next-event estimation at v: one point on an emitter chosen by power (the choice whose density any later vertex
 /// can evaluate for the weights), its light through v's non-specular BRDF, weighted against v's bounce direction
 /// finding the same light (`weigh`: a bounce follows; `bounce_probability`: the share of v's bounces that are not
-/// specular, which scales their pdf).
+/// specular, which scales their pdf). `arriving`, when given, receives the same sample's light arriving at v
+/// without the BRDF or the weight (Le cos / pdf, 0 where hidden): an unbiased one-sample estimate for the L1 store.
 Vec3 next_event(const TracedScene& traced, const SurfacePoint& v, const Material& m, float blinn_k,
-                float bounce_probability, bool weigh, const Vec2& choice_u, const Vec2& point_u, uint64_t& rays) {
+                float bounce_probability, bool weigh, const Vec2& choice_u, const Vec2& point_u, uint64_t& rays,
+                Vec3* arriving = nullptr) {
   const LightTable& table = traced.lights;
   if (table.empty()) return Vec3(0.0f);
   const LightChoice choice = choose_light(table, LightStrategy::kPower, choice_u.x);
@@ -49,6 +51,7 @@ Vec3 next_event(const TracedScene& traced, const SurfacePoint& v, const Material
   const Vec3 origin = leaving_origin(v);
   if (!light_reaches(traced, origin, point - origin, rays)) return Vec3(0.0f);
   const float pdf = choice.pmf / e.area * distance2 / cos_light;  // solid angle, as sampled
+  if (arriving) *arriving = e.ke * (cos_surface / pdf);
   float weight = 1.0f;
   if (weigh) {
     const float light_pdf = power_point_density(table, e.ke) * distance2 / cos_light;
@@ -57,55 +60,51 @@ Vec3 next_event(const TracedScene& traced, const SurfacePoint& v, const Material
   return eval_brdf(m, v.albedo, v.shading_normal, wi, v.wo, blinn_k) * e.ke * (cos_surface * weight / pdf);
 }
 
-/// Where a vertex's L1 came from.
-enum class WholeL1 { kNone, kScreen, kStore, kFed };
+/// What a vertex does about its L1: takes it whole (from the screen or a ready cell of the store), or traces its
+/// shadow ray, feeding that sample to the store's cell `key` when `feeds`.
+struct VertexL1 {
+  enum Source { kShadowRay, kScreen, kStore } source = kShadowRay;
+  Vec3 l1{0.0f};  ///< with kScreen or kStore
+  bool feeds = false;
+  L1CacheKey key;
+  uint64_t hash = 0;
+};
 
-/// L1 at vertex v taken whole, where further_bounces.h's rules allow it: from the store (read, or traced with the
-/// fill's rays and fed to it: samples of run `store_run`), else from the screen pixel that sees v.
-WholeL1 whole_l1_at(const TracedScene& traced, const RenderSettings& settings, const FurtherBounceReuse& reuse,
-                    const SurfacePoint& v, const Material& m, uint64_t store_run, uint64_t& rays, Vec3& l1) {
-  if (settings.camera_light || !brdf_is_constant(m, settings.blinn_k, v.shading_normal, v.wo)) return WholeL1::kNone;
+/// Where vertex v takes its L1 under further_bounces.h's rules: the store first (read where its cell is ready,
+/// else fed by the vertex's own shadow ray), then the screen pixel that sees v.
+VertexL1 l1_at_vertex(const TracedScene& traced, const RenderSettings& settings, const FurtherBounceReuse& reuse,
+                      const SurfacePoint& v, const Material& m) {
+  VertexL1 answer;
+  if (settings.camera_light || !brdf_is_constant(m, settings.blinn_k, v.shading_normal, v.wo)) return answer;
   if (reuse.store) {
     const L1CacheAccess& store = *reuse.store;
     const float u1 = store.jitter->next_float(), u2 = store.jitter->next_float();
-    const L1CacheKey key = jittered_key(*store.grid, v.position, v.geometric_normal, u1, u2);
-    const uint64_t hash = hash_of(key);
+    answer.key = jittered_key(*store.grid, v.position, v.geometric_normal, u1, u2);
+    answer.hash = hash_of(answer.key);
     const L1CacheCell* cell = nullptr;
-    switch (use_of_store(store, key, hash, cell)) {
-      case StoreUse::kRead:
-        l1 = constant_brdf(m, v.albedo, settings.blinn_k) * (cell->sum / static_cast<float>(cell->samples));
-        return WholeL1::kStore;
-      case StoreUse::kFeed: {
-        DirectLightOptions fill;
-        fill.strategy = settings.lights == LightStrategy::kImportance ? LightStrategy::kPower : settings.lights;
-        fill.rays = kL1CacheFillRays;
-        fill.blinn_k = settings.blinn_k;
-        Vec3 arriving(0.0f);
-        l1 = estimate_direct_light(traced, v, fill, *reuse.store_sampler, first_sample_of_run(store_run, fill.rays),
-                                   rays, nullptr, &arriving);
-        store.records->push_back(make_l1_record(key, hash, arriving, static_cast<uint32_t>(fill.rays)));
-        return WholeL1::kFed;
-      }
-      case StoreUse::kTrace:
-        break;
+    const StoreUse use = use_of_store(store, answer.key, answer.hash, cell);
+    if (use == StoreUse::kRead) {
+      answer.source = VertexL1::kStore;
+      answer.l1 = constant_brdf(m, v.albedo, settings.blinn_k) * (cell->sum / static_cast<float>(cell->samples));
+      return answer;
     }
+    answer.feeds = use == StoreUse::kFeed;
   }
   if (reuse.screen && !settings.reuse_diffuse_only && m.diffuse_texture < 0) {
     const int pixel = find_reusable_pixel(*reuse.camera, *reuse.screen, v.triangle, v.position,
                                           traced.scene.geometric_normal_raw(v.triangle));
     if (pixel >= 0) {
-      l1 = reuse.screen->reused_l1(static_cast<size_t>(pixel), settings.reuse);
-      return WholeL1::kScreen;
+      answer.source = VertexL1::kScreen;
+      answer.l1 = reuse.screen->reused_l1(static_cast<size_t>(pixel), settings.reuse);
     }
   }
-  return WholeL1::kNone;
+  return answer;
 }
 
 /// One path from p: its light beyond L1 and L2. `first`, when given, is its first segment, already traced.
-/// `path_sample`: the path's sample index, which numbers its runs of store-feeding shadow samples.
 Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSettings& settings, int bounces_before,
                 PixelSampler& sampler, uint64_t& rays, const SharedBounce* first, const FurtherBounceReuse& reuse,
-                uint64_t path_sample, FurtherBounces& counts) {
+                FurtherBounces& counts) {
   const Scene& scene = traced.scene;
   Vec3 light(0.0f), throughput(1.0f);
   SurfacePoint v = p;
@@ -127,19 +126,19 @@ Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSe
     whole_l1 = false;
     if (vertex >= 2 && reflects_light(m)) {
       ++counts.lookups;
-      Vec3 l1(0.0f);
-      const uint64_t store_run =
-          path_sample * kStoreRunsPerPath + std::min<uint64_t>(vertex - 2, kStoreRunsPerPath - 1);
-      const WholeL1 source = lobes ? WholeL1::kNone : whole_l1_at(traced, settings, reuse, v, m, store_run, rays, l1);
-      if (source != WholeL1::kNone) {
-        light += throughput * l1;
+      const VertexL1 answer = lobes ? VertexL1{} : l1_at_vertex(traced, settings, reuse, v, m);
+      if (answer.source != VertexL1::kShadowRay) {
+        light += throughput * answer.l1;
         whole_l1 = true;
-        counts.from_screen += source == WholeL1::kScreen;
-        counts.from_store += source == WholeL1::kStore;
+        counts.from_screen += answer.source == VertexL1::kScreen;
+        counts.from_store += answer.source == VertexL1::kStore;
       } else {
-        light += throughput * next_event(traced, v, m, settings.blinn_k, lobes ? specular.base_probability : 1.0f,
-                                         scatters, sampler.get_2d_of_dimension(pair + 2),
-                                         sampler.get_2d_of_dimension(pair + 3), rays);
+        Vec3 arriving(0.0f);
+        light +=
+            throughput * next_event(traced, v, m, settings.blinn_k, lobes ? specular.base_probability : 1.0f, scatters,
+                                    sampler.get_2d_of_dimension(pair + 2), sampler.get_2d_of_dimension(pair + 3), rays,
+                                    answer.feeds ? &arriving : nullptr);
+        if (answer.feeds) reuse.store->records->push_back(make_l1_record(answer.key, answer.hash, arriving, 1));
       }
     }
     if (!scatters) break;
@@ -211,10 +210,9 @@ FurtherBounces estimate_further_bounces(const TracedScene& traced, const Surface
   if (!reflects_light(traced.scene.material_of(p.triangle))) return result;
   Vec3 sum(0.0f);
   for (int k = 0; k < settings.ln_rays; ++k) {
-    const uint64_t sample = first_sample + static_cast<uint64_t>(k);
-    sampler.start_sample(sample);
+    sampler.start_sample(first_sample + static_cast<uint64_t>(k));
     const SharedBounce* first = k < shared_count ? &shared[k] : nullptr;
-    sum += trace_path(traced, p, settings, bounces_before, sampler, rays_traced, first, reuse, sample, result);
+    sum += trace_path(traced, p, settings, bounces_before, sampler, rays_traced, first, reuse, result);
   }
   result.light = sum / static_cast<float>(settings.ln_rays);
   return result;

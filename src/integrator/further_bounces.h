@@ -28,16 +28,16 @@ namespace lueur {
 /// mix without a lobe), and never with the head-light (in the screen's and the store's L1, not in ln). The emitter
 /// such a vertex's bounce direction meets then counts for nothing, as in L2.
 ///  - `store` (the store modes), asked first: a ready cell gives the light arriving there, times the vertex's
-///    albedo; a cell that is missing or not ready (or a hit of the learning share, l1_cache.h) is fed by an L1
-///    estimate of kL1CacheFillRays shadow rays from `store_sampler`, which the vertex then takes; where the full
-///    store would refuse the cell, the vertex traces its one shadow ray as without a store.
+///    albedo, and no shadow ray is traced; where the cell is missing or not ready (or at a hit of the learning
+///    share, l1_cache.h) the vertex traces its shadow ray as without a store, and the light that ray's sample brings
+///    (without the BRDF or the MIS weight) feeds the cell as a one-sample record: feeding costs no ray. Where the
+///    full store would refuse the cell, nothing is fed.
 ///  - `screen` (the modes that read it): the pixel that sees the vertex directly gives its L1 (the report's reuse,
 ///    one bounce further); not with --reuse-diffuse-only or on a colour map.
 struct FurtherBounceReuse {
   const Camera* camera = nullptr;
   const ScreenBuffer* screen = nullptr;
   const L1CacheAccess* store = nullptr;
-  PixelSampler* store_sampler = nullptr;
 };
 
 /// ln's light, and where its vertices past q took their L1: the counts the reuse statistics add to L2's.
@@ -47,9 +47,6 @@ struct FurtherBounces {
   int from_screen = 0;  ///< of those, how many took it from the screen
   int from_store = 0;   ///< how many read it from a ready cell of the store
 };
-
-/// The runs of store-feeding shadow samples per path (one per vertex; vertices past the last share its run).
-inline constexpr int kStoreRunsPerPath = 8;
 
 FurtherBounces estimate_further_bounces(const TracedScene& traced, const SurfacePoint& p,
                                         const RenderSettings& settings, int bounces_before, PixelSampler& sampler,

@@ -166,16 +166,12 @@ FurtherBounces trace_further_bounces(const TracedScene& traced, const Camera& ca
                                      FrameBuffers& out, uint64_t& rays, const SharedBounce* shared, int shared_count,
                                      const L1CacheAccess* store) {
   PixelSampler sampler(settings.sampler, settings.seed, i, frame, RngPurpose::kPath);
-  PixelSampler store_sampler(settings.sampler, settings.seed, i, frame, RngPurpose::kPathStore);
   FurtherBounceReuse reuse;
   if (settings.pass_enabled(Pass::kL2) && uses_screen(settings.reuse)) {
     reuse.camera = &camera;
     reuse.screen = &out.screen;
   }
-  if (store) {
-    reuse.store = store;
-    reuse.store_sampler = &store_sampler;
-  }
+  reuse.store = store;
   const FurtherBounces result =
       estimate_further_bounces(traced, sp, settings, path.bounces, sampler,
                                first_sample_of_run(frame, settings.ln_rays), rays, shared, shared_count, reuse);
@@ -293,9 +289,6 @@ uint64_t frames_before_samples_repeat(const RenderSettings& settings) {
     // indirect_light.cpp: each bounce's shadow rays are a run as long as the longest estimate a bounce may trace.
     const int shadow_run = std::max(settings.recompute_rays(), uses_cache(settings.reuse) ? kL1CacheFillRays : 0);
     longest = std::max(longest, run(settings.l2_rays) * run(shadow_run));
-    // further_bounces.cpp: with the store, each path's vertices feed it from runs of kStoreRunsPerPath fills.
-    if (settings.pass_enabled(Pass::kLn) && uses_cache(settings.reuse))
-      longest = std::max(longest, run(settings.ln_rays) * run(kStoreRunsPerPath) * run(kL1CacheFillRays));
   }
   return (uint64_t{1} << 32) / longest;
 }
@@ -305,11 +298,13 @@ uint64_t l1_store_bytes(const RenderSettings& settings) {
   return static_cast<uint64_t>(std::max(settings.cache_mb, 0)) << 20;
 }
 
-FrameResult render_frame(const TracedScene& traced, const Camera& camera, const RenderSettings& settings, Film& film,
+FrameResult render_frame(const TracedScene& traced, const Camera& camera, const RenderSettings& requested, Film& film,
                          L1Cache* l1_store, ThreadPool& pool, const std::atomic<bool>* cancel) {
   FrameResult result;
   const int width = film.width, height = film.height;
   const uint64_t frame = film.frames;
+  RenderSettings settings = requested;
+  if (settings.reuse == ReuseMode::kScreenCache && frame >= kScreenCacheFrames) settings.reuse = ReuseMode::kCache;
   if (film.unit == 0.0) film.unit = film_unit(traced, camera, settings);
   if (film.mode == FilmMode::kExactOnly && settings.pass_enabled(Pass::kL2) && settings.reuse == ReuseMode::kAverage)
     throw std::logic_error("render_frame: --reuse average reads the film's float sums, which this film does not keep");

@@ -24,7 +24,8 @@ inline constexpr std::array<std::string_view, 5> kLightStrategyNames = {"all", "
 
 /// Where L2 takes L1(q) from when a bounce ray hits q: nowhere (recompute), the screen (the report's reuse: this
 /// frame's pixels or their running average), the world-space L1 store (the report's improvement II-B), or both: the
-/// store where its cell is ready, the screen where it is not and the camera saw q, recomputation otherwise.
+/// store where its cell is ready, the screen where it is not and the camera saw q, recomputation otherwise (the
+/// screen only while the store is young: integrator/renderer.h, kScreenCacheFrames).
 enum class ReuseMode : int { kOff = 0, kFrame = 1, kAverage = 2, kCache = 3, kScreenCache = 4 };
 inline constexpr std::array<std::string_view, 5> kReuseModeNames = {"off", "frame", "average", "cache", "screen+cache"};
 inline constexpr bool uses_screen(ReuseMode m) {
