@@ -31,10 +31,9 @@ float power_heuristic(float pdf, float other) {
 /// finding the same light (`weigh`: a bounce follows; `bounce_probability`: the share of v's bounces that are not
 /// specular, which scales their pdf). `arriving`, when given, receives the same sample's light arriving at v
 /// without the BRDF or the weight (Le cos / pdf, 0 where hidden): an unbiased one-sample estimate for the L1 store.
-/// `lobe_only`: through the BRDF's part beyond its diffuse term only (the store gave the diffuse term's light).
 Vec3 next_event(const TracedScene& traced, const SurfacePoint& v, const Material& m, float blinn_k,
                 float bounce_probability, bool weigh, const Vec2& choice_u, const Vec2& point_u, uint64_t& rays,
-                Vec3* arriving = nullptr, bool lobe_only = false) {
+                Vec3* arriving = nullptr) {
   const LightTable& table = traced.lights;
   if (table.empty()) return Vec3(0.0f);
   const LightChoice choice = choose_light(table, LightStrategy::kPower, choice_u.x);
@@ -58,17 +57,14 @@ Vec3 next_event(const TracedScene& traced, const SurfacePoint& v, const Material
     const float light_pdf = power_point_density(table, e.ke) * distance2 / cos_light;
     weight = power_heuristic(light_pdf, bounce_probability * cos_surface * kInvPi);
   }
-  Vec3 f = eval_brdf(m, v.albedo, v.shading_normal, wi, v.wo, blinn_k);
-  if (lobe_only) f -= eval_brdf_diffuse(m, v.albedo, blinn_k);
-  return f * e.ke * (cos_surface * weight / pdf);
+  return eval_brdf(m, v.albedo, v.shading_normal, wi, v.wo, blinn_k) * e.ke * (cos_surface * weight / pdf);
 }
 
-/// What a vertex does about its L1: takes it whole (from the screen or a ready cell of the store), takes its diffuse
-/// term's part from a ready cell and traces the rest (a BRDF with a lobe), or traces its shadow ray, feeding that
-/// sample to the store's cell `key` when `feeds`.
+/// What a vertex does about its L1: takes it whole (from the screen or a ready cell of the store), or traces its
+/// shadow ray, feeding that sample to the store's cell `key` when `feeds`.
 struct VertexL1 {
-  enum Source { kShadowRay, kScreen, kStore, kStoreDiffuse } source = kShadowRay;
-  Vec3 l1{0.0f};  ///< with kScreen, kStore, kStoreDiffuse (then the diffuse term's part only)
+  enum Source { kShadowRay, kScreen, kStore } source = kShadowRay;
+  Vec3 l1{0.0f};  ///< with kScreen or kStore
   bool feeds = false;
   L1CacheKey key;
   uint64_t hash = 0;
@@ -79,8 +75,7 @@ struct VertexL1 {
 VertexL1 l1_at_vertex(const TracedScene& traced, const RenderSettings& settings, const FurtherBounceReuse& reuse,
                       const SurfacePoint& v, const Material& m) {
   VertexL1 answer;
-  if (settings.camera_light) return answer;
-  const bool constant = brdf_is_constant(m, settings.blinn_k, v.shading_normal, v.wo);
+  if (settings.camera_light || !brdf_is_constant(m, settings.blinn_k, v.shading_normal, v.wo)) return answer;
   if (reuse.store) {
     const L1CacheAccess& store = *reuse.store;
     const float u1 = store.jitter->next_float(), u2 = store.jitter->next_float();
@@ -89,16 +84,13 @@ VertexL1 l1_at_vertex(const TracedScene& traced, const RenderSettings& settings,
     const L1CacheCell* cell = nullptr;
     const StoreUse use = use_of_store(store, answer.key, answer.hash, cell);
     if (use == StoreUse::kRead) {
-      const Vec3 arriving = cell->sum / static_cast<float>(cell->samples);
-      answer.source = constant ? VertexL1::kStore : VertexL1::kStoreDiffuse;
-      answer.l1 =
-          (constant ? constant_brdf(m, v.albedo, settings.blinn_k) : eval_brdf_diffuse(m, v.albedo, settings.blinn_k)) *
-          arriving;
+      answer.source = VertexL1::kStore;
+      answer.l1 = constant_brdf(m, v.albedo, settings.blinn_k) * (cell->sum / static_cast<float>(cell->samples));
       return answer;
     }
     answer.feeds = use == StoreUse::kFeed;
   }
-  if (constant && reuse.screen && !settings.reuse_diffuse_only && m.diffuse_texture < 0) {
+  if (reuse.screen && !settings.reuse_diffuse_only && m.diffuse_texture < 0) {
     const int pixel = find_reusable_pixel(*reuse.camera, *reuse.screen, v.triangle, v.position,
                                           traced.scene.geometric_normal_raw(v.triangle));
     if (pixel >= 0) {
@@ -120,9 +112,6 @@ Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSe
   bool after_specular = false;   // v was reached along a specular direction
   float bounce_pdf = 0.0f;       // otherwise, the solid-angle pdf of the direction that reached it
   bool whole_l1 = false;         // the vertex before v took its L1 whole (from the screen): v's emission is in it
-  // The share of the BRDF at the vertex before v, at the direction that reached v, whose light v's emission still
-  // carries: 1, or where that vertex took its diffuse term's light from the store, its lobe's share.
-  Vec3 emission_share(1.0f);
   for (uint32_t vertex = 0;; ++vertex) {
     const Material& m = scene.material_of(v.triangle);
     const uint32_t pair = kPairsPerVertex * vertex;
@@ -135,23 +124,20 @@ Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSe
     if (lobes)
       specular = sample_specular(m, v.albedo, v.shading_normal, v.geometric_normal, v.wo, v.front_face, lobe_u.x);
     whole_l1 = false;
-    bool lobe_only = false;  // v took its diffuse term's light from the store; its lobe's, by its shadow ray
     if (vertex >= 2 && reflects_light(m)) {
       ++counts.lookups;
       const VertexL1 answer = lobes ? VertexL1{} : l1_at_vertex(traced, settings, reuse, v, m);
-      lobe_only = answer.source == VertexL1::kStoreDiffuse;
-      counts.from_screen += answer.source == VertexL1::kScreen;
-      counts.from_store += answer.source == VertexL1::kStore || lobe_only;
-      if (answer.source == VertexL1::kScreen || answer.source == VertexL1::kStore) {
+      if (answer.source != VertexL1::kShadowRay) {
         light += throughput * answer.l1;
         whole_l1 = true;
+        counts.from_screen += answer.source == VertexL1::kScreen;
+        counts.from_store += answer.source == VertexL1::kStore;
       } else {
-        light += throughput * answer.l1;  // the diffuse term's light from the store, or nothing
         Vec3 arriving(0.0f);
         light +=
             throughput * next_event(traced, v, m, settings.blinn_k, lobes ? specular.base_probability : 1.0f, scatters,
                                     sampler.get_2d_of_dimension(pair + 2), sampler.get_2d_of_dimension(pair + 3), rays,
-                                    answer.feeds ? &arriving : nullptr, lobe_only);
+                                    answer.feeds ? &arriving : nullptr);
         if (answer.feeds) reuse.store->records->push_back(make_l1_record(answer.key, answer.hash, arriving, 1));
       }
     }
@@ -179,16 +165,8 @@ Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSe
       dir = Frame::from_normal(v.shading_normal).to_world(local);
       if (!(local.z > 0.0f) || glm::dot(dir, v.geometric_normal) <= 0.0f) break;
       // f cos / pdf: the base's albedo / its probability, or f pi for a BRDF sampled by its cosine.
-      if (lobes) {
-        throughput *= specular.weight;
-      } else {
-        const Vec3 f = eval_brdf(m, v.albedo, v.shading_normal, dir, v.wo, settings.blinn_k);
-        if (lobe_only) {
-          const Vec3 lobe = f - eval_brdf_diffuse(m, v.albedo, settings.blinn_k);
-          for (int c = 0; c < 3; ++c) emission_share[c] = f[c] > 0.0f ? lobe[c] / f[c] : 0.0f;
-        }
-        throughput *= f * kPi;
-      }
+      throughput *=
+          lobes ? specular.weight : eval_brdf(m, v.albedo, v.shading_normal, dir, v.wo, settings.blinn_k) * kPi;
       bounce_pdf = (lobes ? specular.base_probability : 1.0f) * local.z * kInvPi;
       after_specular = false;
     }
@@ -214,10 +192,9 @@ Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSe
       } else if (!after_specular && reached >= 3 && !whole_l1) {
         const float cos_light = glm::dot(v.geometric_normal, v.wo);
         const float light_pdf = power_point_density(traced.lights, mv.ke) * hit.t * hit.t / cos_light;
-        light += throughput * mv.ke * emission_share * power_heuristic(bounce_pdf, light_pdf);
+        light += throughput * mv.ke * power_heuristic(bounce_pdf, light_pdf);
       }
     }
-    emission_share = Vec3(1.0f);
   }
   return light;
 }
