@@ -170,15 +170,14 @@ void statistics_section(const PanelModel& m) {
       ImGui::Text("L1 store: %llu cells, %.1f MiB%s", static_cast<unsigned long long>(s.cache.cells),
                   static_cast<double>(s.cache.bytes) / (1 << 20), s.cache.full ? " (full)" : "");
       if (s.served.total > 0)
-        ImGui::Text("L1 store: serving cells hold %u samples (median; 10%% under %u)", s.served.percentile(0.5),
-                    s.served.percentile(0.1));
+        ImGui::Text("Serving cells: median %u samples, 10%% %u", s.served.percentile(0.5), s.served.percentile(0.1));
     }
     if (s.ln_lookups > 0) {
       const auto ln_share = [&](uint64_t n) {
         return 100.0 * static_cast<double>(n) / static_cast<double>(s.ln_lookups);
       };
-      ImGui::Text("Ln: L1 at its vertices %.1f%% screen, %.1f%% store, %.1f%% traced", ln_share(s.ln_reused),
-                  ln_share(s.ln_cached), ln_share(s.ln_lookups - s.ln_reused - s.ln_cached));
+      ImGui::Text("Ln's L1: %.0f%% screen, %.0f%% store, %.0f%% traced", ln_share(s.ln_reused), ln_share(s.ln_cached),
+                  ln_share(s.ln_lookups - s.ln_reused - s.ln_cached));
     }
     ImGui::Text("L2 time %.2f s", s.l2_seconds);
   }
