@@ -114,6 +114,25 @@ TEST(Bench, SmokeRunWritesTheIssuesJsonSchema) {
   }
 }
 
+TEST(Bench, StoreFramesSectionFollowsL2ByFramesPerMode) {
+  const nlohmann::json j = smoke_run_json("--sections store-frames");
+  const auto& runs = j["store_frames"];
+  ASSERT_EQ(runs.size(), 8u);  // the smoke run: the default scene and the built-in room (no shared scenes), 4 modes
+  for (const auto& e : runs) {
+    EXPECT_TRUE(e["scene"] == "default" || e["scene"] == "room") << e["scene"];
+    ASSERT_EQ(e["checkpoints"].size(), 1u);  // the smoke run's 64 frames: one power of two from 64
+    EXPECT_EQ(e["checkpoints"][0]["frames"].get<int>(), 64);
+    EXPECT_TRUE(std::isfinite(e["checkpoints"][0]["l2_mse"].get<double>()));
+    EXPECT_GT(e["reference_noise"].get<double>(), 0.0);
+    const bool store = e["reuse"] == "cache" || e["reuse"] == "screen+cache";
+    // The store modes say how many samples the cells that served held: at least the ready count.
+    EXPECT_EQ(e["served_cell_samples_median"].is_null(), !store) << e["reuse"];
+    if (store) {
+      EXPECT_GE(e["served_cell_samples_median"].get<int>(), 16) << e["reuse"];
+    }
+  }
+}
+
 TEST(Bench, StoreSectionRacesTheReuseModesAgainstAnUnbiasedReference) {
   const nlohmann::json j = smoke_run_json("--sections store");
   const auto& store = j["store"];
