@@ -156,13 +156,21 @@ Json run_convergence(const ConvergenceOptions& o, std::FILE* log) {
   return results;
 }
 
-double image_rmse(const Image& a, const Image& b) {
+double image_mse(const Image& a, const Image& b) {
   double sum = 0.0;
   for (size_t i = 0; i < a.rgb.size(); ++i) {
     const double d = static_cast<double>(a.rgb[i]) - static_cast<double>(b.rgb[i]);
     sum += d * d;
   }
-  return a.rgb.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(a.rgb.size()));
+  return a.rgb.empty() ? 0.0 : sum / static_cast<double>(a.rgb.size());
+}
+
+double image_rmse(const Image& a, const Image& b) { return std::sqrt(image_mse(a, b)); }
+
+TwoRenderReference reference_of_two(const Image& a, const Image& b) {
+  TwoRenderReference r{a, image_mse(a, b) / 4.0};
+  for (size_t i = 0; i < r.mean.rgb.size(); ++i) r.mean.rgb[i] = 0.5f * (a.rgb[i] + b.rgb[i]);
+  return r;
 }
 
 double image_relmse(const Image& image, const Image& reference) {

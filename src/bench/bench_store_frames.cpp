@@ -1,6 +1,5 @@
 // L2's error by frames, per reuse mode (see bench_store_frames.h). Errors are mean squared errors over the pixels'
-// channels, the reference's own noise taken out: E[(x - r)^2] = e(x)^2 + var(r) for a reference r independent of
-// x, and var(r) = E[(a - b)^2] / 4 for r the mean of two independent renders a and b.
+// channels, the two-render reference's own noise taken out (bench_convergence.h, reference_of_two).
 #include "bench/bench_store_frames.h"
 
 #include <chrono>
@@ -8,6 +7,7 @@
 #include <iterator>
 #include <string>
 
+#include "bench/bench_convergence.h"
 #include "core/atomic_file.h"
 #include "image/image_output.h"
 #include "integrator/renderer.h"
@@ -17,21 +17,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using Json = nlohmann::ordered_json;
-
-double mean_squared_difference(const Image& a, const Image& b) {
-  double sum = 0.0;
-  for (size_t i = 0; i < a.rgb.size(); ++i) {
-    const double d = static_cast<double>(a.rgb[i]) - static_cast<double>(b.rgb[i]);
-    sum += d * d;
-  }
-  return a.rgb.empty() ? 0.0 : sum / static_cast<double>(a.rgb.size());
-}
-
-Image mean_of(const Image& a, const Image& b) {
-  Image m = a;
-  for (size_t i = 0; i < m.rgb.size(); ++i) m.rgb[i] = 0.5f * (a.rgb[i] + b.rgb[i]);
-  return m;
-}
 
 struct Checkpoint {
   uint64_t frames = 0;
@@ -64,7 +49,7 @@ Run render(const TracedScene& traced, const Camera& camera, const RenderSettings
     run.served.add(r.served_samples);
     run.store = r.cache;
     if (reference && into.film.frames == next) {
-      const double mse = mean_squared_difference(layer_average(into.film, Layer::kL2), *reference);
+      const double mse = image_mse(layer_average(into.film, Layer::kL2), *reference);
       run.checkpoints.push_back({next, seconds, mse - reference_noise});
       next *= 2;
     }
@@ -119,8 +104,9 @@ Json run_store_frames(std::vector<BenchScene>& scenes, const StoreFramesOptions&
       halves[h] = layer_average(scratch.film, Layer::kL2);
       if (!kept.empty()) write_file_atomically(kept, encode_pfm(halves[h]));
     }
-    const Image reference = mean_of(halves[0], halves[1]);
-    const double reference_noise = mean_squared_difference(halves[0], halves[1]) / 4.0;
+    const TwoRenderReference two = reference_of_two(halves[0], halves[1]);
+    const Image& reference = two.mean;
+    const double reference_noise = two.noise;
     std::fprintf(log, "lueur-bench: store-frames %s: reference 2 x %llu frames (reuse off) in %.0f s, noise %.3g\n",
                  b.name.c_str(), static_cast<unsigned long long>(o.reference_frames),
                  std::chrono::duration<double>(Clock::now() - reference_start).count(), reference_noise);

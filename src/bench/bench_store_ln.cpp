@@ -4,6 +4,7 @@
 #include <chrono>
 #include <optional>
 
+#include "bench/bench_convergence.h"
 #include "integrator/renderer.h"
 
 namespace lueur::bench {
@@ -11,15 +12,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using Json = nlohmann::ordered_json;
-
-double mean_squared_difference(const Image& a, const Image& b) {
-  double sum = 0.0;
-  for (size_t i = 0; i < a.rgb.size(); ++i) {
-    const double d = static_cast<double>(a.rgb[i]) - static_cast<double>(b.rgb[i]);
-    sum += d * d;
-  }
-  return a.rgb.empty() ? 0.0 : sum / static_cast<double>(a.rgb.size());
-}
 
 struct Point {
   double seconds, ln_mse;
@@ -45,8 +37,8 @@ struct Racer {
       from_screen += r.ln_reused;
       from_store += r.ln_cached;
       if (reference)
-        curve.push_back({seconds, mean_squared_difference(layer_average(accumulation.film, Layer::kLn), *reference) -
-                                      reference_noise});
+        curve.push_back(
+            {seconds, image_mse(layer_average(accumulation.film, Layer::kLn), *reference) - reference_noise});
     }
   }
 };
@@ -83,9 +75,9 @@ Json run_store_ln(std::vector<BenchScene>& scenes, const StoreLnOptions& o, std:
       halves[h] = layer_average(reference.accumulation.film, Layer::kLn);
       reference_frames += reference.accumulation.film.frames;
     }
-    Image reference = halves[0];
-    for (size_t i = 0; i < reference.rgb.size(); ++i) reference.rgb[i] = 0.5f * (halves[0].rgb[i] + halves[1].rgb[i]);
-    const double reference_noise = mean_squared_difference(halves[0], halves[1]) / 4.0;
+    const TwoRenderReference two = reference_of_two(halves[0], halves[1]);
+    const Image& reference = two.mean;
+    const double reference_noise = two.noise;
     std::fprintf(log, "lueur-bench: store-ln %s: reference (reuse off) %llu frames, noise %.3g\n", b.name.c_str(),
                  static_cast<unsigned long long>(reference_frames), reference_noise);
 
