@@ -9,21 +9,13 @@
 #include <cmath>
 #include <cstdio>
 
+#include "bench/bench_convergence.h"
 #include "bench/bench_scenes.h"
 #include "integrator/renderer.h"
 #include "test_support.h"
 
 namespace lueur {
 namespace {
-
-double mean_squared_difference(const Image& a, const Image& b) {
-  double sum = 0.0;
-  for (size_t i = 0; i < a.rgb.size(); ++i) {
-    const double d = static_cast<double>(a.rgb[i]) - static_cast<double>(b.rgb[i]);
-    sum += d * d;
-  }
-  return sum / static_cast<double>(a.rgb.size());
-}
 
 /// L2 alone, 8 x 8 pixels.
 RenderSettings room_settings(ReuseMode reuse, uint64_t seed) {
@@ -108,9 +100,9 @@ TEST(BoxFacingAWall, TheStoreModesL2ConvergesToOffAsOneOverFrames) {
       render_room(*traced, camera, room_settings(ReuseMode::kOff, 1000), kReferenceFrames, {kReferenceFrames}, pool);
   const RoomRun b =
       render_room(*traced, camera, room_settings(ReuseMode::kOff, 1001), kReferenceFrames, {kReferenceFrames}, pool);
-  Image reference = a.l2[0];
-  for (size_t i = 0; i < reference.rgb.size(); ++i) reference.rgb[i] = 0.5f * (a.l2[0].rgb[i] + b.l2[0].rgb[i]);
-  const double reference_noise = mean_squared_difference(a.l2[0], b.l2[0]) / 4.0;
+  const bench::TwoRenderReference two = bench::reference_of_two(a.l2[0], b.l2[0]);
+  const Image& reference = two.mean;
+  const double reference_noise = two.noise;
 
   const std::vector<int> checkpoints = {64, 128, 256, 512};
   constexpr int kSeeds = 6;
@@ -122,7 +114,7 @@ TEST(BoxFacingAWall, TheStoreModesL2ConvergesToOffAsOneOverFrames) {
       settings.cache_cell_pixels = 4.0f;  // cells of a larger image's size in pixels: each asked more often
       const RoomRun run = render_room(*traced, camera, settings, checkpoints.back(), checkpoints, pool);
       for (size_t c = 0; c < checkpoints.size(); ++c)
-        error[c] += (mean_squared_difference(run.l2[c], reference) - reference_noise) / kSeeds;
+        error[c] += (bench::image_mse(run.l2[c], reference) - reference_noise) / kSeeds;
     }
     const std::string name(kReuseModeNames[static_cast<size_t>(mode)]);
     std::printf("%-13s L2 squared error after 64, 128, 256, 512 frames: %.3g %.3g %.3g %.3g\n", name.c_str(), error[0],
