@@ -56,7 +56,7 @@ TEST(Accelerator, LueurKindIsTheBvh) {
 
 TEST(Accelerator, EmbreeWithoutEmbreeIsAOneLineError) {
   if (embree_available()) GTEST_SKIP() << "this build has Embree; the missing-Embree path is not built";
-  EXPECT_THROW(build_accelerator({}, AccelKind::kEmbree), AccelError);
+  EXPECT_THROW(build_accelerator(std::vector<Vec3>{}, AccelKind::kEmbree), AccelError);
   const test::CommandResult r = test::run_lueur("--headless --out /tmp/lueur-no-embree.png --accel embree");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("no Embree"), std::string::npos) << r.output;

@@ -18,7 +18,7 @@ namespace {
 using namespace lueur::test;  // the BVH suites' scenes, rays and checks
 
 TEST(Bvh, EmptyInputGivesNoHits) {
-  const Bvh bvh = build_bvh({});
+  const Bvh bvh = build_bvh(std::vector<Vec3>{});
   EXPECT_TRUE(bvh.empty());
   Ray ray;
   EXPECT_FALSE(intersect_closest(bvh, ray).found());

@@ -46,8 +46,8 @@ TEST(Bvh, CountedQueriesAnswerTheSameAndCountTheirWork) {
 
   // A query on an empty tree is still a query, with no work.
   TraversalCounts empty;
-  EXPECT_FALSE(intersect_closest(build_bvh({}), away, empty).found());
-  EXPECT_FALSE(intersect_any(build_bvh({}), away, empty));
+  EXPECT_FALSE(intersect_closest(build_bvh(std::vector<Vec3>{}), away, empty).found());
+  EXPECT_FALSE(intersect_any(build_bvh(std::vector<Vec3>{}), away, empty));
   EXPECT_EQ(empty.queries, 2u);
   EXPECT_EQ(empty.nodes, 0u);
 }

@@ -24,6 +24,10 @@ struct Accelerator {
 /// filter functions). Throws AccelError for Embree in a build without it.
 Accelerator build_accelerator(const std::vector<Vec3>& corners, AccelKind kind, const HitFilter& filter = {});
 
+/// The same over indexed triangles, read where they are; Lueur's BVH keeps only what its queries read (the lean
+/// build of build_bvh), Embree is given their corners.
+Accelerator build_accelerator(const IndexedTriangles& triangles, AccelKind kind, const HitFilter& filter = {});
+
 /// Bytes the structure's queries read (Lueur: wide nodes and triangle groups; Embree: what its memory monitor
 /// reports).
 size_t accelerator_bytes(const Accelerator& accel);

@@ -9,12 +9,14 @@
 #include "app/scene_export.h"
 #include "app/viewer.h"
 #include "core/atomic_file.h"
+#include "core/memory_budget.h"
 #include "scene/default_scene.h"
 #include "scene/obj_loader.h"
 #include "scene/obj_writer.h"
 
 int main(int argc, char** argv) {
   using namespace lueur;
+  map_large_arrays_alone();
   try {
     const std::optional<AppOptions> options = parse_command_line(argc, argv);
     if (!options) return 0;

@@ -389,6 +389,7 @@ int run(const BenchOptions& o) {
 
 int main(int argc, char** argv) {
   using namespace lueur;
+  map_large_arrays_alone();
   try {
     const auto options = bench::parse(argc, argv);
     if (!options) return 0;

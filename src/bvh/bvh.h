@@ -3,6 +3,7 @@
 // Depends on core only; knows triangles by their three vertex positions.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "core/huge_pages.h"
@@ -74,7 +75,7 @@ struct Bvh {
   HugePageVector<BvhWideNode> wide_nodes;
   HugePageVector<BvhWideNode8> wide8_nodes;
   HugePageVector<BvhTriangleGroup> groups;
-  bool empty() const { return triangles.empty(); }
+  bool empty() const { return groups.empty(); }
   /// Bytes the queries read: the wide nodes and the triangle groups.
   size_t traversal_bytes() const {
     return wide_nodes.size() * sizeof(BvhWideNode) + wide8_nodes.size() * sizeof(BvhWideNode8) +
@@ -91,6 +92,10 @@ struct Bvh {
 /// (called by build_bvh).
 void build_wide_bvh(Bvh& bvh);
 
+/// The same, reading the triangle at each place of the BVH's triangle order from `triangle_at` rather than from
+/// `bvh.triangles` (which a lean build never makes).
+void build_wide_bvh(Bvh& bvh, const std::function<BvhTriangle(uint32_t place)>& triangle_at);
+
 /// Whether builds make the 8-wide AVX2 tree: the CPU has AVX2 and the environment does not say LUEUR_BVH_ISA=sse
 /// (which tests use to check the 4-wide SSE kernels on any machine).
 bool bvh_avx2_enabled();
@@ -106,8 +111,22 @@ Box3 bvh_triangle_box(const BvhTriangle& tri);
 
 /// Builds the hierarchy over triangles given as three vertex positions each (`corners.size() == 3 * count`).
 /// Triangles that can never be hit are left out: zero-area ones (see make_bvh_triangle) and non-finite ones (a
-/// non-finite vertex, or edges that overflow).
+/// non-finite vertex, or edges that overflow). The BVH2 and its triangles are kept beside the traversal form.
 Bvh build_bvh(const std::vector<Vec3>& corners);
+
+/// Triangles as indices into shared positions: triangle i's corners are positions[indices[i * stride + k]] for
+/// k = 0, 1, 2 (stride counted in indices: a Scene's triangles start with their three vertex indices).
+struct IndexedTriangles {
+  const Vec3* positions = nullptr;
+  const uint32_t* indices = nullptr;
+  size_t stride = 3;
+  size_t count = 0;
+};
+
+/// The same tree over indexed triangles, read where they are (no copy of their corners). With `keep_record` false
+/// the BVH2 and its triangles are dropped once the traversal form is made, leaving only what queries read: about
+/// half the memory of a large scene's tree.
+Bvh build_bvh(const IndexedTriangles& triangles, bool keep_record = false);
 
 /// Closest intersection with t in (ray.tmin, ray.tmax). Ties in t go to the lowest input index, so the answer
 /// does not depend on the traversal order.

@@ -3,6 +3,8 @@
 // leaves of the wide tree the queries traverse is the collapse's decision (bvh_wide.cpp). Depends on core (math, ray,
 // box) only; must not know about scenes, materials or rendering.
 
+#include <immintrin.h>
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -13,10 +15,9 @@
 #include <utility>
 #include <vector>
 
-#include <immintrin.h>
-
 #include "bvh/bvh.h"
 #include "bvh/bvh_reinsert.h"
+#include "core/memory_budget.h"
 
 namespace lueur {
 namespace {
@@ -298,9 +299,12 @@ BvhTriangle make_bvh_triangle(const Vec3& a, const Vec3& b, const Vec3& c, uint3
   return tri;
 }
 
-Bvh build_bvh(const std::vector<Vec3>& corners) {
+namespace {
+
+/// The build over triangles read by `corners(i, a, b, c)`; `keep_record`: see build_bvh(IndexedTriangles).
+template <typename Corners>
+Bvh build(size_t input_count, const Corners& corners, bool keep_record) {
   Bvh bvh;
-  const size_t input_count = corners.size() / 3;
   if (input_count >= kNoHit) throw std::length_error("build_bvh: too many triangles for 32-bit indices");
 
   // Only the kept triangles' boxes are held during the build; their prepared form (edges) is made once, in leaf
@@ -308,9 +312,8 @@ Bvh build_bvh(const std::vector<Vec3>& corners) {
   HugePageVector<PrimRef> prims;
   prims.reserve(input_count);
   for (size_t i = 0; i < input_count; ++i) {
-    const Vec3& a = corners[3 * i];
-    const Vec3& b = corners[3 * i + 1];
-    const Vec3& c = corners[3 * i + 2];
+    Vec3 a, b, c;
+    corners(i, a, b, c);
     if (!is_finite(a) || !is_finite(b) || !is_finite(c)) continue;
     const BvhTriangle tri = make_bvh_triangle(a, b, c, static_cast<uint32_t>(i));
     // Edges that overflow could never be hit (non-finite determinant) and would give infinite boxes.
@@ -350,7 +353,6 @@ Bvh build_bvh(const std::vector<Vec3>& corners) {
     }
     build_node(prims, bvh.nodes, task, tasks);
   }
-
   std::vector<HugePageVector<BvhNode>> subtrees(deferred.size());
   std::atomic<size_t> next{0};
   auto worker = [&] {
@@ -370,7 +372,6 @@ Bvh build_bvh(const std::vector<Vec3>& corners) {
   for (unsigned t = 1; t < threads && t < deferred.size(); ++t) helpers.emplace_back(worker);
   worker();
   for (std::thread& t : helpers) t.join();
-
   // Local node 0 becomes the deferred node itself; local node k > 0 goes to base + k - 1.
   for (size_t i = 0; i < deferred.size(); ++i) {
     const HugePageVector<BvhNode>& local = subtrees[i];
@@ -381,22 +382,63 @@ Bvh build_bvh(const std::vector<Vec3>& corners) {
     };
     bvh.nodes[deferred[i].node] = place(local[0]);
     for (size_t k = 1; k < local.size(); ++k) bvh.nodes.push_back(place(local[k]));
+    free_array(subtrees[i]);  // a large scene's nodes are held twice only one subtree at a time
   }
 
   // A few top-down decisions of the binned build leave subtrees where they inflate every ancestor's box; moving
   // them cuts the conference room's traversal cost by a quarter (bvh_reinsert.h). The triangles are then laid out
   // in the new leaf order, once, in their prepared form.
+  // Only the prims' indices are needed from here on: the boxes go before reinsertion makes its own tree.
+  std::vector<uint32_t> ids(prims.size());
+  for (size_t k = 0; k < prims.size(); ++k) ids[k] = prims[k].index();
+  free_array(prims);
   std::vector<LeafRange> ranges;
   reinsert_subtrees(bvh.nodes, ranges);
-  bvh.triangles.reserve(prims.size());
+  std::vector<uint32_t> order;  // the input index at each place of the new leaf order
+  order.reserve(ids.size());
   for (const LeafRange& range : ranges)
-    for (uint32_t k = 0; k < range.count; ++k) {
-      const size_t i = prims[range.first + k].index();
-      bvh.triangles.push_back(
-          make_bvh_triangle(corners[3 * i], corners[3 * i + 1], corners[3 * i + 2], static_cast<uint32_t>(i)));
-    }
-  build_wide_bvh(bvh);
+    for (uint32_t k = 0; k < range.count; ++k) order.push_back(ids[range.first + k]);
+  free_array(ids);
+  free_array(ranges);
+  const auto triangle_at = [&](uint32_t place) {
+    Vec3 a, b, c;
+    corners(order[place], a, b, c);
+    return make_bvh_triangle(a, b, c, order[place]);
+  };
+  if (keep_record) {
+    bvh.triangles.reserve(order.size());
+    for (uint32_t place = 0; place < order.size(); ++place) bvh.triangles.push_back(triangle_at(place));
+    build_wide_bvh(bvh);
+  } else {
+    build_wide_bvh(bvh, triangle_at);
+    free_array(bvh.nodes);
+  }
   return bvh;
+}
+
+}  // namespace
+
+Bvh build_bvh(const std::vector<Vec3>& corners) {
+  return build(
+      corners.size() / 3,
+      [&](size_t i, Vec3& a, Vec3& b, Vec3& c) {
+        a = corners[3 * i];
+        b = corners[3 * i + 1];
+        c = corners[3 * i + 2];
+      },
+      true);
+}
+
+Bvh build_bvh(const IndexedTriangles& triangles, bool keep_record) {
+  return build(
+      triangles.count,
+      [&](size_t i, Vec3& a, Vec3& b, Vec3& c) {
+        const uint32_t* v = triangles.indices + i * triangles.stride;
+        a = triangles.positions[v[0]];
+        b = triangles.positions[v[1]];
+        c = triangles.positions[v[2]];
+      },
+      keep_record);
 }
 
 }  // namespace lueur

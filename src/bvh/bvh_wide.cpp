@@ -50,11 +50,8 @@ HugePageVector<Subtree> describe_subtrees(const Bvh& bvh) {
 }
 
 /// How to hand the triangles of one BVH2 node to a wide node of W children, for every number of slots up to W.
-/// cost[i] is the SAH cost of the cheapest way that takes at most i + 1 slots: a leaf costs its area times its
-/// triangle groups, a wide node its area plus what its slots cost (plain areas: only comparisons matter).
 template <uint32_t W>
 struct SlotPlan {
-  float cost[W];
   /// choice[0]: 1 where the node is best one slot as a wide node of its own, 0 as a leaf. choice[i > 0]: 0 where
   /// i + 1 slots do no better than i (the plan for i slots is used), else how many of the i + 1 slots go to the
   /// left child (the rest to the right).
@@ -63,26 +60,31 @@ struct SlotPlan {
   uint8_t split;
 };
 
-/// The plans of all BVH2 nodes, children before parents (dynamic programming over the tree).
+/// The plans of all BVH2 nodes, children before parents (dynamic programming over the tree). costs[n][i] is the SAH
+/// cost of the cheapest way node n takes at most i + 1 slots: a leaf costs its area times its triangle groups, a
+/// wide node its area plus what its slots cost (plain areas: only comparisons matter). The costs are only needed
+/// here and go with it: the plans the collapse reads are a fifth of their size.
 template <uint32_t W>
 HugePageVector<SlotPlan<W>> plan_slots(const Bvh& bvh, const HugePageVector<Subtree>& subtrees) {
   constexpr float kNever = std::numeric_limits<float>::infinity();
   HugePageVector<SlotPlan<W>> plans(bvh.nodes.size());
+  HugePageVector<std::array<float, W>> costs(bvh.nodes.size());
   for (size_t n = bvh.nodes.size(); n-- > 0;) {
     const BvhNode& node = bvh.nodes[n];
     SlotPlan<W>& plan = plans[n];
+    std::array<float, W>& cost = costs[n];
     const float area = area_of(node);
     const float leaf_cost = kIntersectionCost * static_cast<float>(bvh_group_count(subtrees[n].count)) * area;
     if (node.count > 0) {  // a BVH2 leaf cannot be opened
       for (uint32_t i = 0; i < W; ++i) {
-        plan.cost[i] = leaf_cost;
+        cost[i] = leaf_cost;
         plan.choice[i] = 0;
       }
       plan.split = 0;
       continue;
     }
-    const SlotPlan<W>& left = plans[node.first];
-    const SlotPlan<W>& right = plans[node.first + 1];
+    const std::array<float, W>& left = costs[node.first];
+    const std::array<float, W>& right = costs[node.first + 1];
     // shared[j]: the cheapest way to give j slots to the two children together.
     float shared[W + 1];
     uint8_t left_share[W + 1];
@@ -90,9 +92,9 @@ HugePageVector<SlotPlan<W>> plan_slots(const Bvh& bvh, const HugePageVector<Subt
       shared[j] = kNever;
       left_share[j] = 1;  // kept where every cost is infinite or NaN (coordinates near the float range)
       for (uint32_t k = 1; k < j; ++k) {
-        const float cost = left.cost[k - 1] + right.cost[j - k - 1];
-        if (cost < shared[j]) {
-          shared[j] = cost;
+        const float both = left[k - 1] + right[j - k - 1];
+        if (both < shared[j]) {
+          shared[j] = both;
           left_share[j] = static_cast<uint8_t>(k);
         }
       }
@@ -100,11 +102,11 @@ HugePageVector<SlotPlan<W>> plan_slots(const Bvh& bvh, const HugePageVector<Subt
     plan.split = left_share[W];
     const float wide_cost = kTraversalCost * area + shared[W];
     const bool leaf = subtrees[n].count <= kBvhMaxLeafSize && leaf_cost <= wide_cost;
-    plan.cost[0] = leaf ? leaf_cost : wide_cost;
+    cost[0] = leaf ? leaf_cost : wide_cost;
     plan.choice[0] = leaf ? 0 : 1;
     for (uint32_t i = 1; i < W; ++i) {
-      const bool better = shared[i + 1] < plan.cost[i - 1];
-      plan.cost[i] = better ? shared[i + 1] : plan.cost[i - 1];
+      const bool better = shared[i + 1] < cost[i - 1];
+      cost[i] = better ? shared[i + 1] : cost[i - 1];
       plan.choice[i] = better ? left_share[i + 1] : 0;
     }
   }
@@ -148,8 +150,10 @@ Node empty_wide_node() {
   return node;
 }
 
+using TriangleAt = std::function<BvhTriangle(uint32_t place)>;
+
 /// Packs the triangles of a subtree into groups of four; returns the first group.
-uint32_t pack_leaf(Bvh& bvh, const Subtree& leaf, uint32_t& group_count) {
+uint32_t pack_leaf(Bvh& bvh, const Subtree& leaf, uint32_t& group_count, const TriangleAt& triangle_at) {
   const auto first = static_cast<uint32_t>(bvh.groups.size());
   group_count = bvh_group_count(leaf.count);
   for (uint32_t g = 0; g < group_count; ++g) {
@@ -160,7 +164,7 @@ uint32_t pack_leaf(Bvh& bvh, const Subtree& leaf, uint32_t& group_count) {
         group.id[lane] = kNoHit;  // zero edges (from {}): never hit
         continue;
       }
-      const BvhTriangle& tri = bvh.triangles[leaf.first + i];
+      const BvhTriangle tri = triangle_at(leaf.first + i);
       for (int axis = 0; axis < 3; ++axis) {
         group.v0[axis][lane] = tri.v0[axis];
         group.e1[axis][lane] = tri.e1[axis];
@@ -175,11 +179,11 @@ uint32_t pack_leaf(Bvh& bvh, const Subtree& leaf, uint32_t& group_count) {
 
 /// The collapse into nodes of W children.
 template <typename Node, uint32_t W>
-void collapse(Bvh& bvh, HugePageVector<Node>& wide_nodes) {
+void collapse(Bvh& bvh, HugePageVector<Node>& wide_nodes, const TriangleAt& triangle_at) {
   wide_nodes.reserve(bvh.nodes.size() / (W / 2) + 1);
-  bvh.groups.reserve(bvh.triangles.size() / 2 + 1);
 
   const HugePageVector<Subtree> subtrees = describe_subtrees(bvh);
+  bvh.groups.reserve(subtrees.empty() ? 0 : subtrees[0].count / 2 + 1);  // leaves average more than 2 triangles
   const HugePageVector<SlotPlan<W>> plans = plan_slots<W>(bvh, subtrees);
   // Each task fills wide node `wide` from the BVH2 node `source`: an inner node, or a root that is a leaf.
   struct Task {
@@ -204,7 +208,7 @@ void collapse(Bvh& bvh, HugePageVector<Node>& wide_nodes) {
       Node& node = wide_nodes[task.wide];  // taken again each time: the push below may move it
       set_slot_box(node, k, bvh.nodes[slots[k]]);
       if (slot_is_leaf<W>(bvh, plans, slots[k])) {
-        node.child[k] = pack_leaf(bvh, subtrees[slots[k]], node.count[k]);
+        node.child[k] = pack_leaf(bvh, subtrees[slots[k]], node.count[k], triangle_at);
         continue;
       }
       const auto index = static_cast<uint32_t>(wide_nodes.size());
@@ -225,14 +229,18 @@ bool bvh_avx2_enabled() {
 }
 
 void build_wide_bvh(Bvh& bvh) {
+  build_wide_bvh(bvh, [&bvh](uint32_t place) { return bvh.triangles[place]; });
+}
+
+void build_wide_bvh(Bvh& bvh, const TriangleAt& triangle_at) {
   bvh.wide_nodes.clear();
   bvh.wide8_nodes.clear();
   bvh.groups.clear();
   if (bvh.nodes.empty()) return;
   if (bvh_avx2_enabled())
-    collapse<BvhWideNode8, kBvhWidth8>(bvh, bvh.wide8_nodes);
+    collapse<BvhWideNode8, kBvhWidth8>(bvh, bvh.wide8_nodes, triangle_at);
   else
-    collapse<BvhWideNode, kBvhWidth>(bvh, bvh.wide_nodes);
+    collapse<BvhWideNode, kBvhWidth>(bvh, bvh.wide_nodes, triangle_at);
 }
 
 }  // namespace lueur

@@ -16,7 +16,8 @@ inline constexpr std::size_t kHugePageBytes = std::size_t{2} << 20;
 /// Allocates `bytes` (>= kHugePageBytes) 2 MiB-aligned, rounded up to whole huge pages, and advises the kernel to
 /// back it with huge pages (where it cannot, the memory is ordinary). Throws std::bad_alloc.
 void* allocate_huge_pages(std::size_t bytes);
-void free_huge_pages(void* p);
+/// Frees what allocate_huge_pages(bytes) gave, handing the memory back to the system at once.
+void free_huge_pages(void* p, std::size_t bytes);
 
 template <class T>
 struct HugePageAllocator {
@@ -33,7 +34,7 @@ struct HugePageAllocator {
   }
   void deallocate(T* p, std::size_t n) noexcept {
     if (n * sizeof(T) >= kHugePageBytes)
-      free_huge_pages(p);
+      free_huge_pages(p, n * sizeof(T));
     else
       ::operator delete(p, std::align_val_t{alignof(T)});
   }

@@ -18,8 +18,12 @@ struct FileReadError : std::runtime_error {
 /// it is read passes that size: it throws (an error of the caller's kind) where that is more than may be held.
 using FileSizeCheck = std::function<void(uint64_t bytes)>;
 
+/// Told the bytes read so far and the file's size as a large file is read.
+using FileReadProgress = std::function<void(uint64_t bytes_read, uint64_t size)>;
+
 /// The whole of the regular file `path`; FileReadError where it cannot be opened or read or is not a regular file.
-std::string read_regular_file(const std::string& path, const FileSizeCheck& check_size);
+std::string read_regular_file(const std::string& path, const FileSizeCheck& check_size,
+                              const FileReadProgress& progress = {});
 
 /// The same, refusing (FileReadError) a file of more than `max_bytes`.
 std::string read_regular_file(const std::string& path, uint64_t max_bytes);

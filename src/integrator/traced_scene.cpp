@@ -1,14 +1,14 @@
 // Preparing a scene for tracing, and the shading frame at a hit.
 #include "integrator/traced_scene.h"
 
+#include <cstddef>
+
+#include "core/memory_budget.h"
+
 namespace lueur {
 
 std::shared_ptr<const TracedScene> prepare_scene(Scene scene, AccelKind accel) {
   auto traced = std::make_shared<TracedScene>();
-  std::vector<Vec3> corners;
-  corners.reserve(scene.triangles.size() * 3);
-  for (const Triangle& t : scene.triangles)
-    for (const uint32_t v : t.v) corners.push_back(scene.positions[v]);
   traced->lights = build_light_table(scene);
   const Box3 box = scene.bounds();
   traced->diagonal = std::max(box.diagonal(), 1e-6f);
@@ -22,7 +22,16 @@ std::shared_ptr<const TracedScene> prepare_scene(Scene scene, AccelKind accel) {
     };
     holes.context = &traced->scene;
   }
-  traced->accel = build_accelerator(corners, accel, holes);
+  // The BVH reads the corners where the scene keeps them, rather than from a copy of its own.
+  static_assert(offsetof(Triangle, v) == 0 && sizeof(Triangle) % sizeof(uint32_t) == 0);
+  const Scene& kept = traced->scene;
+  IndexedTriangles triangles;
+  triangles.positions = kept.positions.data();
+  triangles.indices = kept.triangles.empty() ? nullptr : kept.triangles.front().v;
+  triangles.stride = sizeof(Triangle) / sizeof(uint32_t);
+  triangles.count = kept.triangles.size();
+  traced->accel = build_accelerator(triangles, accel, holes);
+  release_free_memory();
   return traced;
 }
 

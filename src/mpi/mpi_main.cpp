@@ -2,9 +2,11 @@
 // `lueur --headless`; the window and the single-machine binary never link MPI.
 #include <mpi.h>
 
+#include "core/memory_budget.h"
 #include "mpi/mpi_render.h"
 
 int main(int argc, char** argv) {
+  lueur::map_large_arrays_alone();
   MPI_Init(&argc, &argv);
   const int status = lueur::run_mpi_render(lueur::mpi_world(), argc, argv);
   MPI_Finalize();
