@@ -1,21 +1,28 @@
-// The conversion step of the OBJ loader (see obj_convert.h), one function per step: parse, relabel the parser's
-// warnings, gather positions, normals and materials, emit the triangles, check and explain what came out, shading
-// normals, emitters. Depends on core, scene, the loader's own pieces and tinyobjloader; this is the only file that
-// includes tiny_obj_loader.h. Never depends on GL, the BVH or the render passes.
+// The conversion step of the OBJ loader (see obj_convert.h), one function per step: the MTL's materials, relabel
+// their warnings, gather positions, normals and materials, emit the triangles (chunks in parallel), check and
+// explain what came out, shading normals, emitters. Depends on core, scene, the loader's own pieces and
+// tinyobjloader (for MTL files only); this is the only file that includes tiny_obj_loader.h. Never depends on GL,
+// the BVH or the render passes.
 #include "scene/obj_convert.h"
 
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <optional>
+#include <sstream>
 #include <string_view>
+#include <thread>
 #include <unordered_set>
 
 #include "scene/light_rig.h"
 #include "scene/obj_text.h"
+#include "scene/polygon.h"
 
 namespace lueur::obj {
 namespace {
@@ -37,19 +44,20 @@ SurfaceKind surface_of_illum(int illum) {
   return SurfaceKind::kBrdf;
 }
 
-/// Runs tinyobjloader on the validated text (triangulating); its first error line becomes a SceneError.
-tinyobj::ObjReader parse_obj(const std::string& obj_text, const std::string& mtl_text, const std::string& label) {
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = true;
-  config.vertex_color = false;
-  tinyobj::ObjReader reader;
-  const bool parsed = reader.ParseFromString(obj_text, mtl_text, config);
-  if (!parsed || !reader.Error().empty()) {
-    std::string error = reader.Error();
-    error = error.substr(0, error.find('\n'));
-    throw SceneError(label + ": " + (error.empty() ? std::string("tinyobjloader could not parse the file") : error));
-  }
-  return reader;
+/// The MTL stream's materials as tinyobjloader reads them, with its name table; its warnings go to `warnings_text`.
+/// An OBJ without a usable mtllib line has no materials, whatever MTL text there is.
+struct FileMaterials {
+  std::vector<tinyobj::material_t> materials;
+  std::map<std::string, int> by_name;
+};
+
+FileMaterials load_materials(const ParsedObj& parsed, const std::string& mtl_text, std::string& warnings_text) {
+  FileMaterials file;
+  if (parsed.mtllibs.empty()) return file;
+  std::istringstream stream(mtl_text);
+  std::string errors;
+  tinyobj::LoadMtl(&file.by_name, &file.materials, &stream, &warnings_text, &errors);
+  return file;
 }
 
 /// Keeps tinyobjloader's warnings, each once and labelled. Its "material not found" lines are dropped: ours name
@@ -67,40 +75,41 @@ void relabel_parser_warnings(string_view text, const std::string& label, const s
   });
 }
 
-void gather_positions(const tinyobj::attrib_t& attrib, Scene& scene) {
-  const size_t vertex_count = attrib.vertices.size() / 3;
-  scene.positions.reserve(vertex_count + 4);  // room for the default light
-  for (size_t i = 0; i < vertex_count; ++i)
-    scene.positions.emplace_back(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
-}
-
-/// OBJ's vt lines (u and v; a third value is ignored). Values are kept as written: the texture lookup wraps them
-/// and reads non-finite ones as 0.
-void gather_texcoords(const tinyobj::attrib_t& attrib, Scene& scene) {
-  const size_t count = attrib.texcoords.size() / 2;
-  scene.texcoords.reserve(count);
-  for (size_t i = 0; i < count; ++i) scene.texcoords.emplace_back(attrib.texcoords[2 * i], attrib.texcoords[2 * i + 1]);
+/// The chunks' positions and texture coordinates, in file order; each chunk's arrays are released once copied.
+void gather_positions(ParsedObj& parsed, Scene& scene) {
+  scene.positions.reserve(parsed.totals.vertices + 4);  // room for the default light
+  scene.texcoords.reserve(parsed.totals.texcoords);
+  for (ObjChunk& chunk : parsed.chunks) {
+    scene.positions.insert(scene.positions.end(), chunk.positions.begin(), chunk.positions.end());
+    scene.texcoords.insert(scene.texcoords.end(), chunk.texcoords.begin(), chunk.texcoords.end());
+    free_array(chunk.positions);
+    free_array(chunk.texcoords);
+  }
 }
 
 /// File normals, normalised (those already of unit length kept bit for bit); unusable ones (zero, NaN, overflow)
 /// leave their corners on the geometric normal. Returns, per file normal, its index in scene.normals or kNoNormal.
-std::vector<uint32_t> gather_normals(const tinyobj::attrib_t& attrib, const std::string& label, Scene& scene,
+std::vector<uint32_t> gather_normals(ParsedObj& parsed, const std::string& label, Scene& scene,
                                      std::vector<std::string>& warnings) {
-  const size_t normal_count = attrib.normals.size() / 3;
-  std::vector<uint32_t> normal_remap(normal_count, kNoNormal);
+  std::vector<uint32_t> normal_remap;
+  normal_remap.reserve(parsed.totals.normals);
+  scene.normals.reserve(parsed.totals.normals);
   size_t unusable_normals = 0;
-  for (size_t i = 0; i < normal_count; ++i) {
-    const Vec3 n(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]);
-    const float length = glm::length(n);
-    if (length > 0.0f && std::isfinite(length) && is_finite(n / length)) {
-      normal_remap[i] = static_cast<uint32_t>(scene.normals.size());
-      // A normal of unit length up to float rounding is kept as written: dividing by its length would move its last
-      // bits, and a scene written out (--export-scene) would not read back as the same scene.
-      const bool unit = std::abs(length - 1.0f) <= 4.0f * std::numeric_limits<float>::epsilon();
-      scene.normals.push_back(unit ? n : n / length);
-    } else {
-      ++unusable_normals;
+  for (ObjChunk& chunk : parsed.chunks) {
+    for (const Vec3& n : chunk.normals) {
+      const float length = glm::length(n);
+      if (length > 0.0f && std::isfinite(length) && is_finite(n / length)) {
+        normal_remap.push_back(static_cast<uint32_t>(scene.normals.size()));
+        // A normal of unit length up to float rounding is kept as written: dividing by its length would move its
+        // last bits, and a scene written out (--export-scene) would not read back as the same scene.
+        const bool unit = std::abs(length - 1.0f) <= 4.0f * std::numeric_limits<float>::epsilon();
+        scene.normals.push_back(unit ? n : n / length);
+      } else {
+        normal_remap.push_back(kNoNormal);
+        ++unusable_normals;
+      }
     }
+    free_array(chunk.normals);
   }
   if (unusable_normals > 0)
     warnings.push_back(label + ": " + counted(unusable_normals, "unusable normal") +
@@ -188,59 +197,125 @@ uint32_t default_material_index(MaterialTable& table, Scene& scene) {
   return *table.default_material;
 }
 
-/// Appends the triangles of every shape in file order, with their normals and materials. Faces that tinyobjloader
-/// could not triangulate (fewer than 3 corners left) are skipped.
-void gather_triangles(const tinyobj::ObjReader& reader, const std::vector<uint32_t>& normal_remap,
-                      const std::string& label, MaterialTable& materials, Scene& scene) {
-  const size_t vertex_count = reader.GetAttrib().vertices.size() / 3;
-  const size_t normal_count = normal_remap.size();
-  const size_t texcoord_count = scene.texcoords.size();
-  auto checked_index = [&](int index, size_t count) -> uint32_t {
-    // The validator makes this unreachable; it guards against tinyobjloader disagreeing with it.
-    if (index < 0 || static_cast<size_t>(index) >= count)
-      throw SceneError(label + ": face refers to a missing vertex (index " + std::to_string(index) + ")");
-    return static_cast<uint32_t>(index);
+/// The scene material of each chunk's usemtl lines, and of the faces a chunk starts with (above its first usemtl:
+/// the material in force at the end of the chunks before). Faces without a known material get the grey default.
+struct FaceMaterials {
+  std::vector<std::vector<uint32_t>> of_usemtl;  ///< per chunk, per usemtl line
+  std::vector<uint32_t> incoming;                ///< per chunk
+};
+
+FaceMaterials resolve_face_materials(const ParsedObj& parsed, const FileMaterials& file, MaterialTable& table,
+                                     Scene& scene) {
+  const auto scene_material = [&](const UseMtl& use) -> int64_t {
+    if (!use.after_mtllib) return -1;
+    const auto it = file.by_name.find(use.name);
+    if (it == file.by_name.end() || it->second < 0 || static_cast<size_t>(it->second) >= table.remap.size()) return -1;
+    return table.remap[static_cast<size_t>(it->second)];
   };
-  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
-    const tinyobj::mesh_t& mesh = shape.mesh;
-    size_t offset = 0;
-    for (size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
-      const size_t corners = mesh.num_face_vertices[f];
-      if (corners == 3 && offset + 3 <= mesh.indices.size()) {
-        Triangle tri;
-        for (size_t c = 0; c < 3; ++c) {
-          const tinyobj::index_t& index = mesh.indices[offset + c];
-          tri.v[c] = checked_index(index.vertex_index, vertex_count);
-          if (index.normal_index >= 0) tri.n[c] = normal_remap[checked_index(index.normal_index, normal_count)];
-          if (index.texcoord_index >= 0) tri.t[c] = checked_index(index.texcoord_index, texcoord_count);
-        }
-        const int id = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
-        const int64_t mapped = id >= 0 && static_cast<size_t>(id) < materials.remap.size() ? materials.remap[id] : -1;
-        tri.material = mapped >= 0 ? static_cast<uint32_t>(mapped) : default_material_index(materials, scene);
-        scene.triangles.push_back(tri);
-      }
-      offset += corners;
+  FaceMaterials faces;
+  int64_t current = -1;
+  const auto take = [&](int64_t material, bool used) -> uint32_t {
+    if (material >= 0) return static_cast<uint32_t>(material);
+    return used ? default_material_index(table, scene) : 0;  // a material no face takes is never looked at
+  };
+  for (const ObjChunk& chunk : parsed.chunks) {
+    const uint64_t head = chunk.runs.empty() ? chunk.counts.faces : chunk.runs.front().first_face;
+    faces.incoming.push_back(take(current, head > 0));
+    std::vector<uint32_t>& of_usemtl = faces.of_usemtl.emplace_back(chunk.usemtls.size(), 0);
+    for (size_t r = 0; r < chunk.runs.size(); ++r) {
+      const MaterialRun& run = chunk.runs[r];
+      const uint64_t end = r + 1 < chunk.runs.size() ? chunk.runs[r + 1].first_face : chunk.counts.faces;
+      current = scene_material(chunk.usemtls[run.usemtl]);
+      of_usemtl[run.usemtl] = take(current, end > run.first_face);
     }
   }
+  return faces;
+}
+
+/// Writes one chunk's faces as triangles from `first` on, triangulating polygons (polygon.h); releases its corners.
+/// Returns how many it wrote: fewer than its faces promised where a polygon had no ear left.
+uint64_t convert_faces(ObjChunk& chunk, uint32_t incoming, const std::vector<uint32_t>& of_usemtl,
+                       const std::vector<uint32_t>& normal_remap, Scene& scene, uint64_t first) {
+  Triangle* out = scene.triangles.data() + first;
+  const Corner* corner = chunk.corners.data();
+  size_t large = 0, run = 0;
+  uint32_t material = incoming;
+  std::vector<Vec3> points;
+  std::vector<std::array<uint32_t, 3>> split;
+  const auto make = [&](const Corner& a, const Corner& b, const Corner& c) {
+    Triangle tri;
+    const Corner* abc[3] = {&a, &b, &c};
+    for (int k = 0; k < 3; ++k) {
+      tri.v[k] = abc[k]->v;
+      tri.t[k] = abc[k]->t;
+      tri.n[k] = abc[k]->n == kNoIndex ? kNoNormal : normal_remap[abc[k]->n];
+    }
+    tri.material = material;
+    *out++ = tri;
+  };
+  for (uint64_t f = 0; f < chunk.face_sizes.size(); ++f) {
+    while (run < chunk.runs.size() && chunk.runs[run].first_face == f) material = of_usemtl[chunk.runs[run++].usemtl];
+    const size_t k = chunk.face_sizes[f] == 255 ? chunk.large_face_sizes[large++] : chunk.face_sizes[f];
+    if (k == 3) {
+      make(corner[0], corner[1], corner[2]);
+    } else {
+      points.resize(k);
+      for (size_t c = 0; c < k; ++c) points[c] = scene.positions[corner[c].v];
+      split.clear();
+      triangulate_face(points, split);
+      for (const auto& [a, b, c] : split) make(corner[a], corner[b], corner[c]);
+    }
+    corner += k;
+  }
+  free_array(chunk.corners);
+  free_array(chunk.face_sizes);
+  free_array(chunk.large_face_sizes);
+  return static_cast<uint64_t>(out - (scene.triangles.data() + first));
+}
+
+/// Every chunk's triangles in file order, with their normals and materials: chunks in parallel, each writing where
+/// the faces before it end; then, where polygons lost triangles, the later chunks' triangles are moved up.
+void gather_triangles(ParsedObj& parsed, const std::vector<uint32_t>& normal_remap, const FaceMaterials& materials,
+                      unsigned threads, Scene& scene) {
+  scene.triangles.resize(parsed.totals.triangles);
+  std::vector<uint64_t> written(parsed.chunks.size(), 0);
+  std::atomic<size_t> next{0};
+  const auto work = [&] {
+    for (size_t k; (k = next.fetch_add(1)) < parsed.chunks.size();)
+      written[k] = convert_faces(parsed.chunks[k], materials.incoming[k], materials.of_usemtl[k], normal_remap, scene,
+                                 parsed.before[k].triangles);
+  };
+  std::vector<std::thread> helpers;
+  for (unsigned t = 1; t < threads && t < parsed.chunks.size(); ++t) helpers.emplace_back(work);
+  work();
+  for (std::thread& t : helpers) t.join();
+  uint64_t end = 0;
+  for (size_t k = 0; k < parsed.chunks.size(); ++k) {
+    const auto from = scene.triangles.begin() + static_cast<ptrdiff_t>(parsed.before[k].triangles);
+    if (end != parsed.before[k].triangles)
+      std::copy(from, from + static_cast<ptrdiff_t>(written[k]), scene.triangles.begin() + static_cast<ptrdiff_t>(end));
+    end += written[k];
+  }
+  scene.triangles.resize(end);
 }
 
 /// A scene needs a triangle; fewer triangles than the faces promised is worth a warning.
-void check_triangle_count(const Scene& scene, const ObjSummary& summary, const std::string& label,
+void check_triangle_count(const Scene& scene, const ParsedObj& parsed, const std::string& label,
                           std::vector<std::string>& warnings) {
+  const uint64_t expected = parsed.totals.triangles;
   if (scene.triangles.empty()) {
-    if (summary.expected_triangles > 0)
+    if (expected > 0)
       throw SceneError(label + ": no triangles: triangulating its faces gave none (degenerate polygons)");
     throw SceneError(label + ": no triangles");
   }
-  if (scene.triangles.size() < summary.expected_triangles) {
-    warnings.push_back(label + ": " + counted(summary.expected_triangles - scene.triangles.size(), "triangle") +
+  if (scene.triangles.size() < expected)
+    warnings.push_back(label + ": " + counted(expected - scene.triangles.size(), "triangle") +
                        " of polygons lost in triangulation");
-  }
 }
 
 /// Says why faces ended up grey: no materials at all, faces before the first usemtl, or unknown material names
 /// (the first five by line, then a count).
-void explain_default_material(const MaterialTable& materials, const ObjSummary& summary, const std::string& label,
+void explain_default_material(const MaterialTable& materials, const ParsedObj& summary, const std::string& label,
                               std::vector<std::string>& warnings) {
   if (materials.default_triangles == 0) return;
   if (summary.mtllibs.empty()) {
@@ -294,10 +369,10 @@ void report_degenerate_triangles(const Scene& scene, const std::string& label, s
 }
 
 /// File normals are the author's; computed ones only stand in when the file references none.
-void assign_shading_normals(const ObjSummary& summary, const LoadOptions& options, Scene& scene) {
+void assign_shading_normals(const ParsedObj& summary, const LoadOptions& options, Scene& scene) {
   if (summary.references_normals) return;
   if (options.smooth_normals) {
-    compute_smooth_normals(scene, options.crease_degrees);
+    compute_smooth_normals(scene, options.crease_degrees, options.threads);
   } else {
     clear_normals(scene);
   }
@@ -328,28 +403,32 @@ void ensure_emitter(const std::string& label, const LoadOptions& options, Scene&
 
 }  // namespace
 
-LoadedScene build_scene(const std::string& obj_text, const std::string& label, const std::string& scene_name,
-                        ObjSummary& summary, const std::vector<MtlSource>& mtl_sources, const LoadOptions& options) {
+LoadedScene build_scene(ParsedObj& parsed, const std::string& label, const std::string& scene_name,
+                        const std::vector<MtlSource>& mtl_sources, const LoadOptions& options, StageClock& clock) {
   LoadedScene result;
   std::vector<std::string>& warnings = result.warnings;
-  warnings = std::move(summary.warnings);
+  warnings = std::move(parsed.warnings);
 
   const MtlStream mtl = merge_mtl_sources(mtl_sources, warnings);
-  const tinyobj::ObjReader reader = parse_obj(obj_text, mtl.text, label);
-  relabel_parser_warnings(reader.Warning(), label, mtl_sources, warnings);
+  std::string mtl_warnings;
+  const FileMaterials file = load_materials(parsed, mtl.text, mtl_warnings);
+  relabel_parser_warnings(mtl_warnings, label, mtl_sources, warnings);
 
   Scene& scene = result.scene;
   scene.name = scene_name;
-  gather_positions(reader.GetAttrib(), scene);
-  const std::vector<uint32_t> normal_remap = gather_normals(reader.GetAttrib(), label, scene, warnings);
-  gather_texcoords(reader.GetAttrib(), scene);
-  MaterialTable materials = gather_materials(reader.GetMaterials(), mtl.entries, scene);
-  gather_triangles(reader, normal_remap, label, materials, scene);
+  gather_positions(parsed, scene);
+  const std::vector<uint32_t> normal_remap = gather_normals(parsed, label, scene, warnings);
+  MaterialTable materials = gather_materials(file.materials, mtl.entries, scene);
+  const FaceMaterials face_materials = resolve_face_materials(parsed, file, materials, scene);
+  gather_triangles(parsed, normal_remap, face_materials, load_threads(options.threads), scene);
+  free_array(parsed.chunks);
+  release_free_memory();
 
-  check_triangle_count(scene, summary, label, warnings);
-  explain_default_material(materials, summary, label, warnings);
+  check_triangle_count(scene, parsed, label, warnings);
+  explain_default_material(materials, parsed, label, warnings);
   report_degenerate_triangles(scene, label, warnings);
-  assign_shading_normals(summary, options, scene);
+  clock.start(LoadStage::kNormals);
+  assign_shading_normals(parsed, options, scene);
   ensure_emitter(label, options, scene, warnings);
   return result;
 }

@@ -1,6 +1,7 @@
 // The OBJ loader's entry points: read the OBJ file (and the MTL files its mtllib lines name) within the memory
-// budget, then run the steps: validate_obj (obj_validate), the MTL scan (mtl_scan) and build_scene (obj_convert).
-// Depends on core, scene and those steps only; tinyobjloader stays inside obj_convert.cpp.
+// budget, then run the steps: parse_obj (obj_read, on every core), the MTL scan (mtl_scan) and build_scene
+// (obj_convert), timing each stage. Depends on core, scene and those steps only; tinyobjloader stays inside
+// obj_convert.cpp.
 // Never depends on GL, the BVH or the render passes.
 #include "scene/obj_loader.h"
 
@@ -13,8 +14,8 @@
 #include "core/regular_file.h"
 #include "scene/mtl_scan.h"
 #include "scene/obj_convert.h"
+#include "scene/obj_read.h"
 #include "scene/obj_text.h"
-#include "scene/obj_validate.h"
 #include "scene/scene_textures.h"
 
 namespace lueur {
@@ -22,19 +23,19 @@ namespace {
 
 using obj::MtlLib;
 using obj::MtlSource;
-using obj::ObjSummary;
+using obj::ParsedObj;
 using obj::too_large;
 using std::string_view;
 
 /// Reads a whole regular file; throws SceneError "cannot open 'path': reason". FIFOs, devices and directories
 /// are refused (a FIFO would block, /dev/zero never ends), and so is a file too large for the memory budget.
-std::string read_text_file(const std::string& path, const MemoryBudget& budget) {
+std::string read_text_file(const std::string& path, const MemoryBudget& budget, const FileReadProgress& progress = {}) {
   const auto check_size = [&](uint64_t bytes) {
     if (const uint64_t needed = scene_memory_bytes(bytes, 0, 0, 0, 0); needed > budget.bytes)
       throw SceneError(path + ": " + too_large("a " + format_bytes(bytes) + " file needs", needed, budget));
   };
   try {
-    return read_regular_file(path, check_size);
+    return read_regular_file(path, check_size, progress);
   } catch (const FileReadError& e) {
     throw SceneError(e.what());
   }
@@ -66,7 +67,7 @@ std::vector<std::string> split_mtllib(string_view s) {
 
 /// Reads the MTL files named by the mtllib lines, beside the OBJ file. Unreadable ones become warnings.
 /// Each MTL file named, read or not, goes into `files`, stamped before it is read.
-std::vector<MtlSource> read_mtl_files(const std::string& obj_path, const std::string& label, const ObjSummary& s,
+std::vector<MtlSource> read_mtl_files(const std::string& obj_path, const std::string& label, const ParsedObj& s,
                                       const MemoryBudget& budget, std::vector<std::string>& warnings,
                                       std::vector<WatchedFile>& files) {
   namespace fs = std::filesystem;
@@ -92,6 +93,15 @@ std::vector<MtlSource> read_mtl_files(const std::string& obj_path, const std::st
     }
   }
   return sources;
+}
+
+/// How parse_obj runs for these options, reporting through `clock`.
+obj::ReadSchedule schedule_of(const LoadOptions& options, const StageClock& clock) {
+  obj::ReadSchedule schedule;
+  schedule.threads = options.threads;
+  schedule.chunk_bytes = options.chunk_bytes;
+  if (options.progress) schedule.progress = [&clock](double done) { clock.report(done); };
+  return schedule;
 }
 
 std::string scene_name_of(const std::string& path) {
@@ -150,17 +160,27 @@ uint64_t emitter_memory_bytes(uint64_t emitters) {
 
 LoadedScene load_obj(const std::string& path, const LoadOptions& options) {
   const MemoryBudget budget = options.memory ? *options.memory : available_memory();
+  StageClock clock(options.progress);
+  clock.start(LoadStage::kRead);
   std::vector<WatchedFile> files{{path, stamp_file(path)}};
-  std::string text = read_text_file(path, budget);
+  std::string text = read_text_file(path, budget, [&](uint64_t read, uint64_t size) {
+    clock.report(size > 0 ? static_cast<double>(read) / static_cast<double>(size) : 1.0);
+  });
   strip_bom(text);
-  ObjSummary summary = obj::validate_obj(text, path, budget);
+  clock.start(LoadStage::kParse);
+  ParsedObj parsed = obj::parse_obj(text, path, budget, schedule_of(options, clock));
+  const uint64_t text_bytes = text.size();
+  std::string().swap(text);  // the chunks hold all the scene needs (assigning "" would keep the buffer)
+  release_free_memory();
+  clock.start(LoadStage::kConvert);
   std::vector<std::string> mtl_warnings;
-  std::vector<MtlSource> sources = read_mtl_files(path, path, summary, budget, mtl_warnings, files);
-  summary.warnings.insert(summary.warnings.end(), mtl_warnings.begin(), mtl_warnings.end());
-  uint64_t scene_bytes =
-      scene_memory_bytes(text.size(), summary.vertices, summary.normals, summary.texcoords, summary.expected_triangles);
-  LoadedScene loaded = obj::build_scene(text, path, scene_name_of(path), summary, sources, options);
+  std::vector<MtlSource> sources = read_mtl_files(path, path, parsed, budget, mtl_warnings, files);
+  parsed.warnings.insert(parsed.warnings.end(), mtl_warnings.begin(), mtl_warnings.end());
+  const obj::ObjCounts& n = parsed.totals;
+  uint64_t scene_bytes = scene_memory_bytes(text_bytes, n.vertices, n.normals, n.texcoords, n.triangles);
+  LoadedScene loaded = obj::build_scene(parsed, path, scene_name_of(path), sources, options, clock);
   scene_bytes = add_emitters_to_budget(loaded.scene, path, scene_bytes, budget);
+  clock.start(LoadStage::kTextures);
   // Texture names are relative to the MTL file that gives them; MTL files are named relative to the OBJ's folder.
   namespace fs = std::filesystem;
   const fs::path directory = fs::path(path).parent_path();
@@ -172,30 +192,37 @@ LoadedScene load_obj(const std::string& path, const LoadOptions& options) {
   }
   const uint64_t texture_budget = budget.bytes > scene_bytes ? budget.bytes - scene_bytes : 0;
   obj::load_scene_textures(loaded.scene, directories, texture_budget, path, loaded.warnings, files);
+  clock.stop();
   loaded.files = std::move(files);
+  loaded.stage_times = clock.times();
   return loaded;
 }
 
 LoadedScene load_obj_from_text(const std::string& obj_text, const std::string& mtl_text, const std::string& name,
                                const LoadOptions& options) {
   const MemoryBudget budget = options.memory ? *options.memory : available_memory();
+  StageClock clock(options.progress);
   std::string text = obj_text;
   strip_bom(text);
-  ObjSummary summary = obj::validate_obj(text, name, budget);
+  clock.start(LoadStage::kParse);
+  ParsedObj parsed = obj::parse_obj(text, name, budget, schedule_of(options, clock));
+  clock.start(LoadStage::kConvert);
   std::vector<MtlSource> sources;
-  if (!summary.mtllibs.empty()) {
-    const std::vector<std::string> names = split_mtllib(summary.mtllibs.front().names);
+  if (!parsed.mtllibs.empty()) {
+    const std::vector<std::string> names = split_mtllib(parsed.mtllibs.front().names);
     MtlSource source{names.empty() ? scene_name_of(name) + ".mtl" : names.front(), mtl_text};
     strip_bom(source.text);
     sources.push_back(std::move(source));
   }
-  LoadedScene loaded = obj::build_scene(text, name, scene_name_of(name), summary, sources, options);
-  add_emitters_to_budget(
-      loaded.scene, name,
-      scene_memory_bytes(text.size(), summary.vertices, summary.normals, summary.texcoords, summary.expected_triangles),
-      budget);
+  const obj::ObjCounts& n = parsed.totals;
+  const uint64_t scene_bytes = scene_memory_bytes(text.size(), n.vertices, n.normals, n.texcoords, n.triangles);
+  LoadedScene loaded = obj::build_scene(parsed, name, scene_name_of(name), sources, options, clock);
+  add_emitters_to_budget(loaded.scene, name, scene_bytes, budget);
+  clock.start(LoadStage::kTextures);
   std::vector<WatchedFile> no_files;
   obj::load_scene_textures(loaded.scene, {}, 0, name, loaded.warnings, no_files);
+  clock.stop();
+  loaded.stage_times = clock.times();
   return loaded;
 }
 

@@ -1,6 +1,6 @@
 // Loads a Wavefront OBJ (+ MTL) file into a Scene, rejecting malformed input with a file:line message.
 // Depends on core and scene only; tinyobjloader stays inside obj_convert.cpp and never leaks into this header.
-// The steps behind it: obj_validate, mtl_scan and obj_convert (with obj_text for the text they share).
+// The steps behind it: obj_read (with obj_parse), mtl_scan and obj_convert (with obj_text for the text they share).
 #pragma once
 
 #include <cstdint>
@@ -11,6 +11,7 @@
 
 #include "core/file_watch.h"
 #include "core/memory_budget.h"
+#include "scene/load_stages.h"
 #include "scene/scene.h"
 
 namespace lueur {
@@ -36,6 +37,13 @@ struct LoadOptions {
   /// Off, such a scene stays unlit (and says so).
   bool light_rig = true;
   float light_rig_scale = 1.0f;
+  /// Threads that parse and convert the OBJ; 0: every core. The scene is the same whatever the count.
+  unsigned threads = 0;
+  /// The size of the pieces the OBJ text is parsed in (cut at line ends); 0: several per thread. The scene is the
+  /// same whatever the size.
+  size_t chunk_bytes = 0;
+  /// Told each stage and its share done as the file is read and converted. May be empty.
+  LoadProgress progress;
 };
 
 /// Bytes loading and preparing (BVH, light table) a scene of this size takes at its peak: a conservative
@@ -55,6 +63,8 @@ struct LoadedScene {
   /// mtllib lines name (found or not), each texture (where it was found; a missing one where it would be looked for
   /// first). The window reloads the scene when one of them changes. Empty for a scene given as text.
   std::vector<WatchedFile> files;
+  /// How long each stage took (reading, parsing, converting, normals, textures).
+  std::vector<StageTime> stage_times;
 };
 
 /// Loads `path` and the MTL files its `mtllib` lines name (looked up beside the OBJ file).

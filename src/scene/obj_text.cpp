@@ -5,6 +5,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 
 #include "scene/obj_loader.h"
 
@@ -69,6 +70,48 @@ NumberStatus parse_float(string_view token, float& out) {
   if (ec != std::errc() || end != token.data() + token.size()) return NumberStatus::not_a_number;
   out = static_cast<float>(value);
   return std::isfinite(out) ? NumberStatus::ok : NumberStatus::not_finite;
+}
+
+float lenient_float(string_view token) {
+  const auto digit = [&](size_t i) { return i < token.size() && std::isdigit(static_cast<unsigned char>(token[i])); };
+  size_t i = 0;
+  const bool negative = i < token.size() && token[i] == '-';
+  if (i < token.size() && (token[i] == '+' || token[i] == '-')) ++i;
+  const size_t mantissa_begin = i;
+  size_t mantissa_digits = 0;
+  while (digit(i)) ++i, ++mantissa_digits;
+  if (i < token.size() && token[i] == '.') {
+    ++i;
+    while (digit(i)) ++i, ++mantissa_digits;
+  } else if (mantissa_digits == 0) {
+    return 0.0f;  // neither a digit nor a '.': not a number
+  }
+  const size_t mantissa_end = i;
+  long exponent = 0;
+  if (i < token.size() && (token[i] == 'e' || token[i] == 'E')) {
+    ++i;
+    const bool negative_exponent = i < token.size() && token[i] == '-';
+    if (i < token.size() && (token[i] == '+' || token[i] == '-')) ++i;
+    if (!digit(i)) return 0.0f;  // an exponent without digits spoils the whole number
+    for (; digit(i); ++i) {
+      if (exponent > 214748364) return 0.0f;  // beyond int: refused, like a malformed exponent
+      exponent = 10 * exponent + (token[i] - '0');
+    }
+    if (negative_exponent) exponent = -exponent;
+  }
+  // "5." and ".5" read as such; a mantissa of no digits at all ("." or "-.") is zero.
+  if (mantissa_digits == 0) return negative ? -0.0f : 0.0f;
+  std::string number(token.substr(mantissa_begin, mantissa_end - mantissa_begin));
+  number += 'e';
+  number += std::to_string(exponent);
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), value);
+  if (ec == std::errc::result_out_of_range) {
+    value = std::strtod(number.c_str(), nullptr);  // too large: infinite; too small: zero or subnormal
+  } else if (ec != std::errc() || end != number.data() + number.size()) {
+    return 0.0f;
+  }
+  return static_cast<float>(negative ? -value : value);
 }
 
 NumberStatus parse_integer(string_view token, long long& out) {

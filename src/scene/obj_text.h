@@ -58,6 +58,11 @@ enum class NumberStatus { ok, not_a_number, not_finite };
 /// Parses a whole token as a float: rejects trailing junk ("1.5abc"), NaN, infinities and values beyond float.
 NumberStatus parse_float(std::string_view token, float& out);
 
+/// Reads a normal's or texture coordinate's value as OBJ readers do: the longest leading number
+/// ([+-] digits [. digits] [e [+-] digits], or a leading '.'), rounded correctly, and 0 where the token does not
+/// start with one or its exponent is malformed ("1.5abc" is 1.5, "abc" and "1e" are 0, "1e999" is infinite).
+float lenient_float(std::string_view token);
+
 /// Parses a whole token as an integer; not_finite stands for "beyond long long".
 NumberStatus parse_integer(std::string_view token, long long& out);
 
