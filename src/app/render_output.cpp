@@ -10,12 +10,13 @@
 
 #include "app/displayed_image.h"
 #include "app/interrupt.h"
+#include "app/load_progress_line.h"
 #include "app/split_output.h"
 #include "core/atomic_file.h"
 #include "core/regular_file.h"
 #include "core/stopwatch.h"
-#include "image/image_output.h"
 #include "film/noise_estimate.h"
+#include "image/image_output.h"
 #include "runtime/render_memory.h"
 #include "scene/obj_loader.h"
 #include "settings/compare.h"
@@ -205,7 +206,13 @@ RenderJob prepare_render_job(const AppOptions& options, bool writes_output) {
   const MemoryBudget scene_memory = reserve_render_memory(settings, job.right ? &job.right->render : nullptr);
   const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
   const Clock::time_point load_start = Clock::now();
-  job.opened = open_scene(options.scene_path, scene_options_of(options.settings), aspect, scene_memory);
+  SceneOptions scene_options = scene_options_of(options.settings);
+  scene_options.threads = static_cast<unsigned>(std::max(options.threads, 0));
+  {
+    LoadProgressLine line(options.scene_path.empty() ? std::string("the default scene") : options.scene_path,
+                          writes_output && ::isatty(STDERR_FILENO));
+    job.opened = open_scene(options.scene_path, scene_options, aspect, scene_memory, line.callback());
+  }
   job.load_seconds = seconds_since(load_start);
   if (writes_output)
     for (const std::string& w : job.opened.warnings) std::fprintf(stderr, "lueur: warning: %s\n", w.c_str());
@@ -242,6 +249,9 @@ void print_render_header(const AppOptions& options, const RenderJob& job, const 
                traced.scene.name.c_str(), traced.scene.triangles.size(), traced.lights.size(), textures.c_str(),
                settings.width, settings.height, options.settings.frames, workers.c_str(),
                std::string(enum_name(kAccelKindNames, options.settings.accel)).c_str(), job.load_seconds);
+  if (!job.opened.stage_times.empty())
+    std::fprintf(stderr, "%s\n",
+                 load_summary(describe_stage_times(job.opened.stage_times), traced.scene.triangles.size()).c_str());
 }
 
 void record_noise_history(const AppOptions& options, const Film& film, double elapsed, RunFigures& figures) {

@@ -1,6 +1,7 @@
 // Opening a scene: loading or building it, preparing it for tracing, and choosing the view it opens with.
 #include "app/scene_source.h"
 
+#include <cstdio>
 #include <limits>
 
 #include "scene/default_scene.h"
@@ -57,10 +58,7 @@ void choose_view(const std::string& label, StartView start, OpenedScene& opened)
 }  // namespace
 
 OpenedScene open_scene(const std::string& path, const SceneOptions& options, float aspect, const MemoryBudget& memory,
-                       const std::function<void(const std::string& stage)>& on_stage) {
-  const auto stage = [&](const std::string& what) {
-    if (on_stage) on_stage(what);
-  };
+                       const LoadProgress& progress) {
   OpenedScene opened;
   Scene scene;
   if (path.empty()) {
@@ -68,20 +66,25 @@ OpenedScene open_scene(const std::string& path, const SceneOptions& options, flo
     if (options.smooth_normals) compute_smooth_normals(scene);
     opened.outside_view = default_scene_camera();
   } else {
-    stage("reading " + path);
     LoadOptions load_options;
     load_options.smooth_normals = options.smooth_normals;
     load_options.memory = memory;
     load_options.light_rig = options.light_rig;
     load_options.light_rig_scale = options.light_rig_scale;
+    load_options.threads = options.threads;
+    load_options.progress = progress;
     LoadedScene loaded = load_obj(path, load_options);
     scene = std::move(loaded.scene);
     opened.warnings = std::move(loaded.warnings);
     opened.files = std::move(loaded.files);
+    opened.stage_times = std::move(loaded.stage_times);
     opened.outside_view = frame_box(scene.bounds(), 45.0f, aspect);
   }
-  stage("building the BVH of " + std::to_string(scene.triangles.size()) + " triangles");
+  StageClock clock(progress);
+  clock.start(LoadStage::kBvh);
   opened.traced = prepare_scene(std::move(scene), options.accel);
+  clock.stop();
+  opened.stage_times.insert(opened.stage_times.end(), clock.times().begin(), clock.times().end());
   if (!path.empty()) {
     const TracedScene& traced = *opened.traced;
     if (const std::optional<Enclosure> room = find_enclosure(traced.scene.bounds(), accelerator_ray_cast(traced)))
@@ -89,6 +92,16 @@ OpenedScene open_scene(const std::string& path, const SceneOptions& options, flo
   }
   choose_view(path.empty() ? std::string("the default scene") : path, options.start_view, opened);
   return opened;
+}
+
+std::string describe_stage_times(const std::vector<StageTime>& times) {
+  std::string text;
+  for (const StageTime& t : times) {
+    char line[96];
+    std::snprintf(line, sizeof line, "%s%s %.2f s", text.empty() ? "" : ", ", load_stage_name(t.stage), t.seconds);
+    text += line;
+  }
+  return text;
 }
 
 }  // namespace lueur

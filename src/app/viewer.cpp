@@ -61,6 +61,8 @@ void Viewer::begin_frame() {
 PanelActions Viewer::lay_out_and_draw_panel() {
   panel_.stats = tracer_.stats();
   panel_.status = loading_ ? loading_->status() : std::string();
+  panel_.status_done = loading_ ? loading_->stage_done() : -1.0;
+  panel_.status_stages = loading_ ? loading_->finished_stages() : std::vector<std::string>();
   toggle_panel();
   layout_ = current_layout();
   PanelActions actions;

@@ -55,7 +55,11 @@ PanelActions draw_panel(PanelModel& m, float height, bool over_image) {
   }
   ImGui::PushItemWidth(-ImGui::GetFontSize() * 9.0f);  // leave room for the labels on the right
   ImGui::TextDisabled("Tab hides the panel; keys: last section");
-  if (!m.status.empty()) ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.3f, 1.0f), "%s", m.status.c_str());
+  if (!m.status.empty()) {
+    for (const std::string& stage : m.status_stages) ImGui::TextDisabled("  %s", stage.c_str());
+    ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.3f, 1.0f), "%s", m.status.c_str());
+    if (m.status_done >= 0.0) ImGui::ProgressBar(static_cast<float>(m.status_done), ImVec2(-1.0f, 0.0f));
+  }
   if (!m.message.empty()) {
     const ImVec4 colour = m.message_is_error ? ImVec4(1.0f, 0.35f, 0.3f, 1.0f) : ImVec4(0.6f, 0.9f, 0.6f, 1.0f);
     ImGui::PushStyleColor(ImGuiCol_Text, colour);

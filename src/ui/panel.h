@@ -56,7 +56,9 @@ struct PanelModel {
   float automatic_ao_radius = 0.0f;  ///< the AO radius used while the setting is 0 (a tenth of the diagonal)
   bool has_light_rig = false;        ///< the scene had no emitter and is lit by the default rig
   bool closed_room = false;          ///< the scene has a view from inside (the caller sets it)
-  std::string status;                ///< e.g. "loading bunny.obj: building BVH"; empty when idle
+  std::string status;                ///< e.g. "loading bunny.obj: building the BVH (1.2 s)"; empty when idle
+  double status_done = -1.0;         ///< the loading stage's share done, shown as a bar; negative: none
+  std::vector<std::string> status_stages;  ///< the loading stages finished, with their times
   std::string message;               ///< the last saved path or error
   bool message_is_error = false;
   std::string view_path = "lueur-view.json";  ///< the file "Save view" and "Load view" use

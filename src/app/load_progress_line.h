@@ -1,0 +1,39 @@
+// The headless progress line of a scene being opened: on a terminal, one line updated in place with the stage, its
+// share done and the time; elsewhere (a log, a pipe) nothing until the summary, which names each stage's time.
+#pragma once
+
+#include <string>
+
+#include "core/stopwatch.h"
+#include "scene/load_stages.h"
+
+namespace lueur {
+
+class LoadProgressLine {
+ public:
+  /// `label`: what is being opened, as the line names it. `on_terminal`: whether stderr is one.
+  LoadProgressLine(std::string label, bool on_terminal);
+  ~LoadProgressLine();
+  LoadProgressLine(const LoadProgressLine&) = delete;
+  LoadProgressLine& operator=(const LoadProgressLine&) = delete;
+
+  /// What open_scene is told: redraws the line at most ten times a second, and at each new stage.
+  LoadProgress callback();
+  /// Clears the line, so that what is printed next starts on a clean one.
+  void finish();
+
+ private:
+  void show(LoadStage stage, double done);
+
+  std::string label_;
+  bool on_terminal_;
+  bool shown_ = false;
+  Clock::time_point start_;
+  Clock::time_point last_;
+  LoadStage stage_ = LoadStage::kRead;
+};
+
+/// "lueur: loading stages: reading 0.05 s, ...; peak memory 620 MiB, 155 bytes per triangle".
+std::string load_summary(const std::string& stage_times, uint64_t triangles);
+
+}  // namespace lueur
