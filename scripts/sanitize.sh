@@ -10,10 +10,11 @@ source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 lueur_install_packages
 
 # Threading tests: the thread pool, the renderer across thread counts and cancelled from another thread, the
-# viewer's tracer thread (its stress test included) and the BVH's parallel build. Embree's own threads are not
-# instrumented, so its tests stay out.
-TSAN_TARGETS=(test_thread_pool test_render test_indirect test_progressive test_bvh_brute_force test_bvh_degenerate)
-TSAN_TESTS='ThreadPool|CancelledFrame|Render\.BitIdentical|ReuseFraction|ProgressiveTracer|Bvh'
+# viewer's tracer thread (its stress test included), the BVH's parallel build and the OBJ read on every core.
+# Embree's own threads are not instrumented, so its tests stay out.
+TSAN_TARGETS=(test_thread_pool test_render test_indirect test_progressive test_bvh_brute_force test_bvh_degenerate
+  test_obj_chunks)
+TSAN_TESTS='ThreadPool|CancelledFrame|Render\.BitIdentical|ReuseFraction|ProgressiveTracer|Bvh|ObjChunks'
 
 # The tests that draw through OpenGL (Mesa) in-process or in the lueur processes they start.
 GL_TESTS='GlDisplay|Window\.UnderXvfb'

@@ -14,7 +14,8 @@ Accelerator build_accelerator(const std::vector<Vec3>& corners, AccelKind kind, 
   return accel;
 }
 
-Accelerator build_accelerator(const IndexedTriangles& triangles, AccelKind kind, const HitFilter& filter) {
+Accelerator build_accelerator(const IndexedTriangles& triangles, AccelKind kind, const HitFilter& filter,
+                              const BuildProgress& progress) {
   if (kind == AccelKind::kEmbree) {
     std::vector<Vec3> corners;
     corners.reserve(3 * triangles.count);
@@ -26,7 +27,7 @@ Accelerator build_accelerator(const IndexedTriangles& triangles, AccelKind kind,
   Accelerator accel;
   accel.kind = kind;
   accel.filter = filter;
-  accel.bvh = build_bvh(triangles);
+  accel.bvh = build_bvh(triangles, false, progress);
   return accel;
 }
 

@@ -26,7 +26,9 @@ Accelerator build_accelerator(const std::vector<Vec3>& corners, AccelKind kind, 
 
 /// The same over indexed triangles, read where they are; Lueur's BVH keeps only what its queries read (the lean
 /// build of build_bvh), Embree is given their corners.
-Accelerator build_accelerator(const IndexedTriangles& triangles, AccelKind kind, const HitFilter& filter = {});
+/// `progress` is told Lueur's build's share done.
+Accelerator build_accelerator(const IndexedTriangles& triangles, AccelKind kind, const HitFilter& filter = {},
+                              const BuildProgress& progress = {});
 
 /// Bytes the structure's queries read (Lueur: wide nodes and triangle groups; Embree: what its memory monitor
 /// reports).

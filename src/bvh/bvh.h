@@ -123,10 +123,13 @@ struct IndexedTriangles {
   size_t count = 0;
 };
 
+/// Told the share of a build done (0 to 1), from the thread that called it.
+using BuildProgress = std::function<void(double done)>;
+
 /// The same tree over indexed triangles, read where they are (no copy of their corners). With `keep_record` false
 /// the BVH2 and its triangles are dropped once the traversal form is made, leaving only what queries read: about
 /// half the memory of a large scene's tree.
-Bvh build_bvh(const IndexedTriangles& triangles, bool keep_record = false);
+Bvh build_bvh(const IndexedTriangles& triangles, bool keep_record = false, const BuildProgress& progress = {});
 
 /// Closest intersection with t in (ray.tmin, ray.tmax). Ties in t go to the lowest input index, so the answer
 /// does not depend on the traversal order.

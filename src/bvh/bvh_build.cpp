@@ -303,36 +303,54 @@ namespace {
 
 /// The build over triangles read by `corners(i, a, b, c)`; `keep_record`: see build_bvh(IndexedTriangles).
 template <typename Corners>
-Bvh build(size_t input_count, const Corners& corners, bool keep_record) {
+Bvh build(size_t input_count, const Corners& corners, bool keep_record, const BuildProgress& progress) {
+  // Reported at the end of each step, by the rough share of a large build's time up to there: the boxes, the top,
+  // the subtrees (one by one), reinsertion and the collapse.
+  const auto report = [&](double done) {
+    if (progress) progress(done);
+  };
   Bvh bvh;
   if (input_count >= kNoHit) throw std::length_error("build_bvh: too many triangles for 32-bit indices");
 
   // Only the kept triangles' boxes are held during the build; their prepared form (edges) is made once, in leaf
   // order, at the end, rather than kept in input order and copied (a 2M-triangle scene would write 96 MB twice).
-  HugePageVector<PrimRef> prims;
-  prims.reserve(input_count);
-  for (size_t i = 0; i < input_count; ++i) {
-    Vec3 a, b, c;
-    corners(i, a, b, c);
-    if (!is_finite(a) || !is_finite(b) || !is_finite(c)) continue;
-    const BvhTriangle tri = make_bvh_triangle(a, b, c, static_cast<uint32_t>(i));
-    // Edges that overflow could never be hit (non-finite determinant) and would give infinite boxes.
-    if (!is_finite(tri.e1) || !is_finite(tri.e2)) continue;
-    // Nor can a zero-area triangle (make_bvh_triangle gave it zero edges): it would only fill leaf lanes. Real
-    // meshes have many (the conference room: 16% of its triangles).
-    if (tri.e1 == Vec3(0.0f) && tri.e2 == Vec3(0.0f)) continue;
-    // Hits are clamped into bvh_triangle_box, so node boxes must contain it exactly; the input vertices too
-    // (v0 + e1 can round away from b).
-    Box3 box = bvh_triangle_box(tri);
-    box.expand(a);
-    box.expand(b);
-    box.expand(c);
-    const auto index = static_cast<uint32_t>(i);
-    float index_bits;
-    std::memcpy(&index_bits, &index, sizeof index_bits);
-    prims.push_back(PrimRef{_mm_setr_ps(box.lo.x, box.lo.y, box.lo.z, index_bits),
-                            _mm_setr_ps(box.hi.x, box.hi.y, box.hi.z, 0.0f)});
+  // Made on every thread, each slice from its own start, then closed up in order (where triangles were left out).
+  HugePageVector<PrimRef> prims(input_count);
+  const unsigned slices = slice_count(static_cast<uint32_t>(input_count));
+  std::vector<uint32_t> kept(slices, 0);
+  for_each_slice(0, static_cast<uint32_t>(input_count), slices, [&](unsigned slice, uint32_t begin, uint32_t end) {
+    uint32_t out = begin;
+    for (uint32_t i = begin; i < end; ++i) {
+      Vec3 a, b, c;
+      corners(i, a, b, c);
+      if (!is_finite(a) || !is_finite(b) || !is_finite(c)) continue;
+      const BvhTriangle tri = make_bvh_triangle(a, b, c, i);
+      // Edges that overflow could never be hit (non-finite determinant) and would give infinite boxes.
+      if (!is_finite(tri.e1) || !is_finite(tri.e2)) continue;
+      // Nor can a zero-area triangle (make_bvh_triangle gave it zero edges): it would only fill leaf lanes. Real
+      // meshes have many (the conference room: 16% of its triangles).
+      if (tri.e1 == Vec3(0.0f) && tri.e2 == Vec3(0.0f)) continue;
+      // Hits are clamped into bvh_triangle_box, so node boxes must contain it exactly; the input vertices too
+      // (v0 + e1 can round away from b).
+      Box3 box = bvh_triangle_box(tri);
+      box.expand(a);
+      box.expand(b);
+      box.expand(c);
+      float index_bits;
+      std::memcpy(&index_bits, &i, sizeof index_bits);
+      prims[out++] = PrimRef{_mm_setr_ps(box.lo.x, box.lo.y, box.lo.z, index_bits),
+                             _mm_setr_ps(box.hi.x, box.hi.y, box.hi.z, 0.0f)};
+    }
+    kept[slice] = out - begin;
+  });
+  size_t filled = 0;
+  for (unsigned slice = 0; slice < slices; ++slice) {
+    const size_t begin = input_count * slice / slices;
+    if (filled != begin) std::copy(prims.begin() + begin, prims.begin() + begin + kept[slice], prims.begin() + filled);
+    filled += kept[slice];
   }
+  prims.resize(filled);
+  report(0.15);
   if (prims.empty()) return bvh;
 
   const auto prim_count = static_cast<uint32_t>(prims.size());
@@ -353,9 +371,10 @@ Bvh build(size_t input_count, const Corners& corners, bool keep_record) {
     }
     build_node(prims, bvh.nodes, task, tasks);
   }
+  report(0.3);
   std::vector<HugePageVector<BvhNode>> subtrees(deferred.size());
-  std::atomic<size_t> next{0};
-  auto worker = [&] {
+  std::atomic<size_t> next{0}, finished{0};
+  auto worker = [&](bool reports) {
     for (size_t i; (i = next.fetch_add(1)) < deferred.size();) {
       HugePageVector<BvhNode>& local = subtrees[i];
       local.push_back(BvhNode{});
@@ -365,12 +384,14 @@ Bvh build(size_t input_count, const Corners& corners, bool keep_record) {
         stack.pop_back();
         build_node(prims, local, task, stack);
       }
+      const size_t done = finished.fetch_add(1) + 1;
+      if (reports) report(0.3 + 0.35 * static_cast<double>(done) / static_cast<double>(deferred.size()));
     }
   };
   const unsigned threads = build_threads();
   std::vector<std::thread> helpers;
-  for (unsigned t = 1; t < threads && t < deferred.size(); ++t) helpers.emplace_back(worker);
-  worker();
+  for (unsigned t = 1; t < threads && t < deferred.size(); ++t) helpers.emplace_back(worker, false);
+  worker(true);  // the calling thread reports, as progress callers expect
   for (std::thread& t : helpers) t.join();
   // Local node 0 becomes the deferred node itself; local node k > 0 goes to base + k - 1.
   for (size_t i = 0; i < deferred.size(); ++i) {
@@ -394,6 +415,7 @@ Bvh build(size_t input_count, const Corners& corners, bool keep_record) {
   free_array(prims);
   std::vector<LeafRange> ranges;
   reinsert_subtrees(bvh.nodes, ranges);
+  report(0.7);
   std::vector<uint32_t> order;  // the input index at each place of the new leaf order
   order.reserve(ids.size());
   for (const LeafRange& range : ranges)
@@ -413,23 +435,23 @@ Bvh build(size_t input_count, const Corners& corners, bool keep_record) {
     build_wide_bvh(bvh, triangle_at);
     free_array(bvh.nodes);
   }
+  report(1.0);
   return bvh;
 }
 
 }  // namespace
 
 Bvh build_bvh(const std::vector<Vec3>& corners) {
-  return build(
-      corners.size() / 3,
-      [&](size_t i, Vec3& a, Vec3& b, Vec3& c) {
-        a = corners[3 * i];
-        b = corners[3 * i + 1];
-        c = corners[3 * i + 2];
-      },
-      true);
+  return build(corners.size() / 3,
+               [&](size_t i, Vec3& a, Vec3& b, Vec3& c) {
+                 a = corners[3 * i];
+                 b = corners[3 * i + 1];
+                 c = corners[3 * i + 2];
+               },
+               true, {});
 }
 
-Bvh build_bvh(const IndexedTriangles& triangles, bool keep_record) {
+Bvh build_bvh(const IndexedTriangles& triangles, bool keep_record, const BuildProgress& progress) {
   return build(
       triangles.count,
       [&](size_t i, Vec3& a, Vec3& b, Vec3& c) {
@@ -438,7 +460,7 @@ Bvh build_bvh(const IndexedTriangles& triangles, bool keep_record) {
         b = triangles.positions[v[1]];
         c = triangles.positions[v[2]];
       },
-      keep_record);
+      keep_record, progress);
 }
 
 }  // namespace lueur

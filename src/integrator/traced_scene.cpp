@@ -7,7 +7,7 @@
 
 namespace lueur {
 
-std::shared_ptr<const TracedScene> prepare_scene(Scene scene, AccelKind accel) {
+std::shared_ptr<const TracedScene> prepare_scene(Scene scene, AccelKind accel, const BuildProgress& progress) {
   auto traced = std::make_shared<TracedScene>();
   traced->lights = build_light_table(scene);
   const Box3 box = scene.bounds();
@@ -30,7 +30,7 @@ std::shared_ptr<const TracedScene> prepare_scene(Scene scene, AccelKind accel) {
   triangles.indices = kept.triangles.empty() ? nullptr : kept.triangles.front().v;
   triangles.stride = sizeof(Triangle) / sizeof(uint32_t);
   triangles.count = kept.triangles.size();
-  traced->accel = build_accelerator(triangles, accel, holes);
+  traced->accel = build_accelerator(triangles, accel, holes, progress);
   release_free_memory();
   return traced;
 }

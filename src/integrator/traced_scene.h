@@ -20,7 +20,9 @@ struct TracedScene {
 
 /// Builds the acceleration structure of the chosen kind and the light table (the expensive step of opening a
 /// scene). Throws AccelError for Embree in a build without it.
-std::shared_ptr<const TracedScene> prepare_scene(Scene scene, AccelKind accel = AccelKind::kLueur);
+/// `progress` is told the share of the BVH's build done.
+std::shared_ptr<const TracedScene> prepare_scene(Scene scene, AccelKind accel = AccelKind::kLueur,
+                                                 const BuildProgress& progress = {});
 
 /// The surface seen at a hit, with its normals turned towards the side the ray came from (two-sided shading).
 struct SurfacePoint {

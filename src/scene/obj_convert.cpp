@@ -369,10 +369,12 @@ void report_degenerate_triangles(const Scene& scene, const std::string& label, s
 }
 
 /// File normals are the author's; computed ones only stand in when the file references none.
-void assign_shading_normals(const ParsedObj& summary, const LoadOptions& options, Scene& scene) {
+void assign_shading_normals(const ParsedObj& summary, const LoadOptions& options, Scene& scene,
+                            const StageClock& clock) {
   if (summary.references_normals) return;
   if (options.smooth_normals) {
-    compute_smooth_normals(scene, options.crease_degrees, options.threads);
+    compute_smooth_normals(scene, options.crease_degrees, options.threads,
+                           [&clock](double done) { clock.report(done); });
   } else {
     clear_normals(scene);
   }
@@ -428,7 +430,7 @@ LoadedScene build_scene(ParsedObj& parsed, const std::string& label, const std::
   explain_default_material(materials, parsed, label, warnings);
   report_degenerate_triangles(scene, label, warnings);
   clock.start(LoadStage::kNormals);
-  assign_shading_normals(parsed, options, scene);
+  assign_shading_normals(parsed, options, scene, clock);
   ensure_emitter(label, options, scene, warnings);
   return result;
 }

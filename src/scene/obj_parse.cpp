@@ -39,12 +39,6 @@ bool is_known_statement(string_view keyword) {
   return std::find(std::begin(kKnownStatements), std::end(kKnownStatements), keyword) != std::end(kKnownStatements);
 }
 
-/// About 8 s of ear clipping on one core (see parse_element).
-constexpr uint64_t kMaxTriangulationWork = 4'000'000'000;
-
-/// Vertex and triangle indices are uint32_t (with one reserved value) in Scene.
-constexpr uint64_t kMaxElements = 0x7fffffff;
-
 /// How often (in elements) a chunk adds what it read to the shared running total.
 constexpr uint64_t kElementsPerSharedCheck = 1 << 16;
 

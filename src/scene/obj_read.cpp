@@ -16,9 +16,6 @@ namespace {
 
 using std::string_view;
 
-/// Ear clipping's budget, as obj_parse.cpp refuses it.
-constexpr uint64_t kMaxTriangulationWork = 4'000'000'000;
-
 /// The chunks' spans: each ends just after a '\n' (or at the end of the text), so every chunk holds whole lines and
 /// a "\r\n" is never split.
 std::vector<string_view> split_into_chunks(string_view text, size_t chunk_bytes) {
@@ -45,7 +42,8 @@ bool holds_with(const ObjChunk& chunk, const ObjCounts& before, uint64_t text_by
     return false;
   ObjCounts after = before;
   after.add(chunk.counts);
-  if (after.triangulation_work > kMaxTriangulationWork || after.vertices > 0x7fffffff || after.triangles > 0x7fffffff)
+  if (after.triangulation_work > kMaxTriangulationWork || after.vertices > kMaxElements ||
+      after.triangles > kMaxElements)
     return false;
   // The estimate grows with every line, so the chunk's last line is the one to check.
   return scene_memory_bytes(text_bytes, after.vertices, after.normals, after.texcoords, after.triangles) <=

@@ -2,6 +2,7 @@
 // Plain data with indices instead of pointers. Depends on core only.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -103,8 +104,9 @@ void collect_emitters(Scene& scene);
 /// Replaces the shading normals by smooth ones: each corner averages, weighted by the corner's angle, the face
 /// normals of the triangles around the same position whose normals lie within `crease_degrees` of its own.
 /// Faces beyond the crease keep a sharp edge (a box stays a box). Runs on `threads` threads (0: every core); the
-/// result is the same whatever their number.
-void compute_smooth_normals(Scene& scene, float crease_degrees = 60.0f, unsigned threads = 0);
+/// result is the same whatever their number. `progress`, when given, is told the share done, from the calling thread.
+void compute_smooth_normals(Scene& scene, float crease_degrees = 60.0f, unsigned threads = 0,
+                            const std::function<void(double done)>& progress = {});
 
 /// Drops shading normals: every triangle is shaded with its geometric normal.
 void clear_normals(Scene& scene);

@@ -145,8 +145,13 @@ struct Distinct {
 
 }  // namespace
 
-void compute_smooth_normals(Scene& scene, float crease_degrees, unsigned threads) {
+void compute_smooth_normals(Scene& scene, float crease_degrees, unsigned threads,
+                            const std::function<void(double done)>& progress) {
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  // Reported at the end of each step by the rough share of the time up to there; the groups, group by group.
+  const auto report = [&](double done) {
+    if (progress) progress(done);
+  };
   const size_t triangle_count = scene.triangles.size();
   const float crease = std::clamp(std::isfinite(crease_degrees) ? crease_degrees : 60.0f, 0.0f, 180.0f);
   // The small slack lets faces with the same normal (dot rounding to just under 1) join even at crease 0.
@@ -172,6 +177,7 @@ void compute_smooth_normals(Scene& scene, float crease_degrees, unsigned threads
   });
   const auto usable = [&](uint32_t t) { return face_normal[t] != Vec3(0.0f); };
 
+  report(0.15);
   // Corners grouped by welded position (compressed rows: corners of group g lie in [start[g], start[g+1])).
   const std::vector<uint32_t> weld = weld_positions(scene.positions, threads);
   const uint32_t group_count = weld.empty() ? 0u : *std::max_element(weld.begin(), weld.end()) + 1u;
@@ -190,6 +196,7 @@ void compute_smooth_normals(Scene& scene, float crease_degrees, unsigned threads
     }
   }
 
+  report(0.4);
   std::vector<Triangle>& triangles = scene.triangles;
   for (Triangle& tri : triangles) tri.n[0] = tri.n[1] = tri.n[2] = kNoNormal;
 
@@ -204,6 +211,8 @@ void compute_smooth_normals(Scene& scene, float crease_degrees, unsigned threads
     std::vector<Distinct> distinct;
     std::vector<uint32_t> order;
     for (size_t g = group_begin; g < group_end; ++g) {
+      if (part == 0 && (g - group_begin) % 65536 == 65535)  // the calling thread's range stands for all
+        report(0.4 + 0.45 * static_cast<double>(g - group_begin) / static_cast<double>(group_end - group_begin));
       const uint32_t begin = start[g];
       const uint32_t end = start[g + 1];
       if (begin == end) continue;
@@ -231,6 +240,7 @@ void compute_smooth_normals(Scene& scene, float crease_degrees, unsigned threads
       }
     }
   });
+  report(0.85);
   // The first range's indices are already the file's; the others' are renumbered into it.
   NormalInterner all = std::move(interners[0]);
   std::vector<std::vector<uint32_t>> renumber(parts);
