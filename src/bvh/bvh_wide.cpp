@@ -4,10 +4,13 @@
 // triangles to a wide node as that many children (leaves of up to kBvhMaxLeafSize triangles, or wide nodes of their
 // own); the wide tree is then read off from the root. Leaves' triangles are packed four to a group,
 // structure-of-arrays. Depends on bvh.h only.
+#include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <thread>
 #include <vector>
 
 #include "bvh/bvh.h"
@@ -152,10 +155,9 @@ Node empty_wide_node() {
 
 using TriangleAt = std::function<BvhTriangle(uint32_t place)>;
 
-/// Packs the triangles of a subtree into groups of four; returns the first group.
-uint32_t pack_leaf(Bvh& bvh, const Subtree& leaf, uint32_t& group_count, const TriangleAt& triangle_at) {
-  const auto first = static_cast<uint32_t>(bvh.groups.size());
-  group_count = bvh_group_count(leaf.count);
+/// Packs the triangles of a subtree into groups of four at `groups[first]` on.
+void pack_leaf(const Subtree& leaf, BvhTriangleGroup* groups, const TriangleAt& triangle_at) {
+  const uint32_t group_count = bvh_group_count(leaf.count);
   for (uint32_t g = 0; g < group_count; ++g) {
     BvhTriangleGroup group{};
     for (uint32_t lane = 0; lane < kBvhWidth; ++lane) {
@@ -172,53 +174,146 @@ uint32_t pack_leaf(Bvh& bvh, const Subtree& leaf, uint32_t& group_count, const T
       }
       group.id[lane] = tri.id;
     }
-    bvh.groups.push_back(group);
+    groups[g] = group;
   }
-  return first;
 }
 
-/// The collapse into nodes of W children.
-template <typename Node, uint32_t W>
-void collapse(Bvh& bvh, HugePageVector<Node>& wide_nodes, const TriangleAt& triangle_at) {
-  wide_nodes.reserve(bvh.nodes.size() / (W / 2) + 1);
+/// Wide nodes and triangle groups a part of the collapse makes.
+struct Sizes {
+  uint64_t nodes = 0, groups = 0;
+};
 
-  const HugePageVector<Subtree> subtrees = describe_subtrees(bvh);
-  bvh.groups.reserve(subtrees.empty() ? 0 : subtrees[0].count / 2 + 1);  // leaves average more than 2 triangles
-  const HugePageVector<SlotPlan<W>> plans = plan_slots<W>(bvh, subtrees);
-  // Each task fills wide node `wide` from the BVH2 node `source`: an inner node, or a root that is a leaf.
+/// The collapse into nodes of W children. The wide tree is read off the plans from the root, each wide node's
+/// children made by a task; the top of the tree is made here, and subtrees of at most a 64th of the triangles are
+/// set aside, counted, given their places after the top, and made on every thread. Where everything goes depends
+/// on the tree only, not on the threads.
+template <typename Node, uint32_t W>
+class Collapse {
+ public:
+  Collapse(const Bvh& bvh, const TriangleAt& triangle_at)
+      : bvh_(bvh),
+        triangle_at_(triangle_at),
+        subtrees_(describe_subtrees(bvh)),
+        plans_(plan_slots<W>(bvh, subtrees_)) {}
+
+  void run(HugePageVector<Node>& nodes, HugePageVector<BvhTriangleGroup>& groups) {
+    const Sizes total = count(0);
+    nodes.resize(total.nodes);
+    groups.resize(total.groups);
+    Cursor top{&nodes, &groups, 1, 0};
+    nodes[0] = empty_wide_node<Node, W>();
+    std::vector<Task> tasks{{0, 0}}, deferred;
+    const uint32_t grain = std::max<uint32_t>(32768, subtrees_[0].count / 64);
+    while (!tasks.empty()) {
+      const Task task = tasks.back();
+      tasks.pop_back();
+      if (task.wide != 0 && subtrees_[task.source].count <= grain) {
+        deferred.push_back(task);
+        continue;
+      }
+      fill(task, top, tasks);
+    }
+    // Each set-aside subtree's nodes and groups follow the top's, in the order they were set aside.
+    std::vector<Cursor> cursors(deferred.size());
+    uint64_t next_node = top.next_node, next_group = top.next_group;
+    for (size_t i = 0; i < deferred.size(); ++i) {
+      const Sizes sizes = count(deferred[i].source);
+      cursors[i] = Cursor{&nodes, &groups, next_node, next_group};
+      next_node += sizes.nodes - 1;  // its root is the task's node, made by the top
+      next_group += sizes.groups;
+    }
+    std::atomic<size_t> next{0};
+    const auto work = [&] {
+      std::vector<Task> stack;
+      for (size_t i; (i = next.fetch_add(1)) < deferred.size();) {
+        stack.assign(1, deferred[i]);
+        while (!stack.empty()) {
+          const Task task = stack.back();
+          stack.pop_back();
+          fill(task, cursors[i], stack);
+        }
+      }
+    };
+    const unsigned threads = std::max(1u, std::min(std::thread::hardware_concurrency(), 64u));
+    std::vector<std::thread> helpers;
+    for (unsigned t = 1; t < threads && t < deferred.size(); ++t) helpers.emplace_back(work);
+    work();
+    for (std::thread& t : helpers) t.join();
+  }
+
+ private:
+  /// Fills wide node `wide` from the BVH2 node `source`: an inner node, or a root that is a leaf.
   struct Task {
     uint32_t wide, source;
   };
-  std::vector<Task> tasks{{0, 0}};
-  wide_nodes.push_back(empty_wide_node<Node, W>());
-  while (!tasks.empty()) {
-    const Task task = tasks.back();
-    tasks.pop_back();
-    std::array<uint32_t, W> slots{};
+  /// Where a part of the collapse puts its next wide node and group.
+  struct Cursor {
+    HugePageVector<Node>* nodes = nullptr;
+    HugePageVector<BvhTriangleGroup>* groups = nullptr;
+    uint64_t next_node = 0, next_group = 0;
+  };
+
+  /// The BVH2 nodes that become the slots of the wide node made from `source`.
+  uint32_t slots_of(uint32_t source, std::array<uint32_t, W>& slots) const {
     uint32_t used = 0;
-    if (slot_is_leaf<W>(bvh, plans, task.source)) {
-      slots[used++] = task.source;  // the whole BVH2 is one leaf: the root holds it as its only child
+    if (slot_is_leaf<W>(bvh_, plans_, source)) {
+      slots[used++] = source;  // the whole BVH2 is one leaf: the root holds it as its only child
     } else {
-      const BvhNode& source = bvh.nodes[task.source];
-      const uint32_t left_share = plans[task.source].split;
-      collect_slots<W>(bvh, plans, source.first, left_share, slots, used);
-      collect_slots<W>(bvh, plans, source.first + 1, W - left_share, slots, used);
+      const BvhNode& node = bvh_.nodes[source];
+      const uint32_t left_share = plans_[source].split;
+      collect_slots<W>(bvh_, plans_, node.first, left_share, slots, used);
+      collect_slots<W>(bvh_, plans_, node.first + 1, W - left_share, slots, used);
     }
+    return used;
+  }
+
+  /// The wide nodes and groups made from `source` down (its own node included).
+  Sizes count(uint32_t source) const {
+    Sizes sizes;
+    std::vector<uint32_t> stack{source};
+    while (!stack.empty()) {
+      const uint32_t n = stack.back();
+      stack.pop_back();
+      ++sizes.nodes;
+      std::array<uint32_t, W> slots{};
+      const uint32_t used = slots_of(n, slots);
+      for (uint32_t k = 0; k < used; ++k) {
+        if (slot_is_leaf<W>(bvh_, plans_, slots[k]))
+          sizes.groups += bvh_group_count(subtrees_[slots[k]].count);
+        else
+          stack.push_back(slots[k]);
+      }
+    }
+    return sizes;
+  }
+
+  void fill(const Task& task, Cursor& at, std::vector<Task>& tasks) const {
+    std::array<uint32_t, W> slots{};
+    const uint32_t used = slots_of(task.source, slots);
+    Node& node = (*at.nodes)[task.wide];
     for (uint32_t k = 0; k < used; ++k) {
-      Node& node = wide_nodes[task.wide];  // taken again each time: the push below may move it
-      set_slot_box(node, k, bvh.nodes[slots[k]]);
-      if (slot_is_leaf<W>(bvh, plans, slots[k])) {
-        node.child[k] = pack_leaf(bvh, subtrees[slots[k]], node.count[k], triangle_at);
+      set_slot_box(node, k, bvh_.nodes[slots[k]]);
+      if (slot_is_leaf<W>(bvh_, plans_, slots[k])) {
+        const Subtree& leaf = subtrees_[slots[k]];
+        node.child[k] = static_cast<uint32_t>(at.next_group);
+        node.count[k] = bvh_group_count(leaf.count);
+        pack_leaf(leaf, at.groups->data() + at.next_group, triangle_at_);
+        at.next_group += node.count[k];
         continue;
       }
-      const auto index = static_cast<uint32_t>(wide_nodes.size());
+      const auto index = static_cast<uint32_t>(at.next_node++);
       node.child[k] = index;
       node.count[k] = 0;
+      (*at.nodes)[index] = empty_wide_node<Node, W>();
       tasks.push_back({index, slots[k]});
-      wide_nodes.push_back(empty_wide_node<Node, W>());
     }
   }
-}
+
+  const Bvh& bvh_;
+  const TriangleAt& triangle_at_;
+  const HugePageVector<Subtree> subtrees_;
+  const HugePageVector<SlotPlan<W>> plans_;
+};
 
 }  // namespace
 
@@ -238,9 +333,9 @@ void build_wide_bvh(Bvh& bvh, const TriangleAt& triangle_at) {
   bvh.groups.clear();
   if (bvh.nodes.empty()) return;
   if (bvh_avx2_enabled())
-    collapse<BvhWideNode8, kBvhWidth8>(bvh, bvh.wide8_nodes, triangle_at);
+    Collapse<BvhWideNode8, kBvhWidth8>(bvh, triangle_at).run(bvh.wide8_nodes, bvh.groups);
   else
-    collapse<BvhWideNode, kBvhWidth>(bvh, bvh.wide_nodes, triangle_at);
+    Collapse<BvhWideNode, kBvhWidth>(bvh, triangle_at).run(bvh.wide_nodes, bvh.groups);
 }
 
 }  // namespace lueur
