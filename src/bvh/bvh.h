@@ -93,7 +93,7 @@ struct Bvh {
 void build_wide_bvh(Bvh& bvh);
 
 /// The same, reading the triangle at each place of the BVH's triangle order from `triangle_at` rather than from
-/// `bvh.triangles` (which a lean build never makes).
+/// `bvh.triangles` (which a lean build never makes), and freeing `bvh.nodes` before the groups are packed.
 void build_wide_bvh(Bvh& bvh, const std::function<BvhTriangle(uint32_t place)>& triangle_at);
 
 /// Whether builds make the 8-wide AVX2 tree: the CPU has AVX2 and the environment does not say LUEUR_BVH_ISA=sse

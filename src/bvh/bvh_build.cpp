@@ -432,8 +432,7 @@ Bvh build(size_t input_count, const Corners& corners, bool keep_record, const Bu
     for (uint32_t place = 0; place < order.size(); ++place) bvh.triangles.push_back(triangle_at(place));
     build_wide_bvh(bvh);
   } else {
-    build_wide_bvh(bvh, triangle_at);
-    free_array(bvh.nodes);
+    build_wide_bvh(bvh, triangle_at);  // which frees the BVH2 as soon as it can
   }
   report(1.0);
   return bvh;

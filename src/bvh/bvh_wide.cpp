@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "bvh/bvh.h"
+#include "core/memory_budget.h"
 
 namespace lueur {
 namespace {
@@ -183,24 +184,30 @@ struct Sizes {
   uint64_t nodes = 0, groups = 0;
 };
 
+/// A leaf of the wide tree whose triangles are still to be packed: its groups start at `group`.
+struct LeafToPack {
+  uint64_t group = 0;
+  Subtree triangles;
+};
+
 /// The collapse into nodes of W children. The wide tree is read off the plans from the root, each wide node's
 /// children made by a task; the top of the tree is made here, and subtrees of at most a 64th of the triangles are
-/// set aside, counted, given their places after the top, and made on every thread. Where everything goes depends
-/// on the tree only, not on the threads.
+/// set aside, counted, given their places after the top, and made on every thread. The leaves' triangles are packed
+/// last, on every thread, once the BVH2 (with `release`) and the plans are freed. Where everything goes depends on
+/// the tree only, not on the threads.
 template <typename Node, uint32_t W>
 class Collapse {
  public:
-  Collapse(const Bvh& bvh, const TriangleAt& triangle_at)
+  Collapse(Bvh& bvh, const TriangleAt& triangle_at)
       : bvh_(bvh),
         triangle_at_(triangle_at),
         subtrees_(describe_subtrees(bvh)),
         plans_(plan_slots<W>(bvh, subtrees_)) {}
 
-  void run(HugePageVector<Node>& nodes, HugePageVector<BvhTriangleGroup>& groups) {
+  void run(HugePageVector<Node>& nodes, HugePageVector<BvhTriangleGroup>& groups, bool release) {
     const Sizes total = count(0);
     nodes.resize(total.nodes);
-    groups.resize(total.groups);
-    Cursor top{&nodes, &groups, 1, 0};
+    Part top{1, 0, {}};
     nodes[0] = empty_wide_node<Node, W>();
     std::vector<Task> tasks{{0, 0}}, deferred;
     const uint32_t grain = std::max<uint32_t>(32768, subtrees_[0].count / 64);
@@ -211,34 +218,36 @@ class Collapse {
         deferred.push_back(task);
         continue;
       }
-      fill(task, top, tasks);
+      fill(task, nodes, top, tasks);
     }
     // Each set-aside subtree's nodes and groups follow the top's, in the order they were set aside.
-    std::vector<Cursor> cursors(deferred.size());
+    std::vector<Part> parts(deferred.size());
     uint64_t next_node = top.next_node, next_group = top.next_group;
     for (size_t i = 0; i < deferred.size(); ++i) {
       const Sizes sizes = count(deferred[i].source);
-      cursors[i] = Cursor{&nodes, &groups, next_node, next_group};
+      parts[i] = Part{next_node, next_group, {}};
       next_node += sizes.nodes - 1;  // its root is the task's node, made by the top
       next_group += sizes.groups;
     }
-    std::atomic<size_t> next{0};
-    const auto work = [&] {
-      std::vector<Task> stack;
-      for (size_t i; (i = next.fetch_add(1)) < deferred.size();) {
-        stack.assign(1, deferred[i]);
-        while (!stack.empty()) {
-          const Task task = stack.back();
-          stack.pop_back();
-          fill(task, cursors[i], stack);
-        }
+    on_every_thread(deferred.size(), [&](size_t i) {
+      std::vector<Task> stack{deferred[i]};
+      while (!stack.empty()) {
+        const Task task = stack.back();
+        stack.pop_back();
+        fill(task, nodes, parts[i], stack);
       }
-    };
-    const unsigned threads = std::max(1u, std::min(std::thread::hardware_concurrency(), 64u));
-    std::vector<std::thread> helpers;
-    for (unsigned t = 1; t < threads && t < deferred.size(); ++t) helpers.emplace_back(work);
-    work();
-    for (std::thread& t : helpers) t.join();
+    });
+    // Only the leaves' triangle ranges are needed from here on: the BVH2 and the plans go before the groups come.
+    free_array(plans_);
+    free_array(subtrees_);
+    if (release) free_array(bvh_.nodes);
+    parts.push_back(std::move(top));
+    groups.resize(total.groups);
+    on_every_thread(parts.size(), [&](size_t i) {
+      for (const LeafToPack& leaf : parts[i].leaves)
+        pack_leaf(leaf.triangles, groups.data() + leaf.group, triangle_at_);
+      free_array(parts[i].leaves);
+    });
   }
 
  private:
@@ -246,12 +255,24 @@ class Collapse {
   struct Task {
     uint32_t wide, source;
   };
-  /// Where a part of the collapse puts its next wide node and group.
-  struct Cursor {
-    HugePageVector<Node>* nodes = nullptr;
-    HugePageVector<BvhTriangleGroup>* groups = nullptr;
+  /// A part of the collapse: where it puts its next wide node and group, and its leaves to pack.
+  struct Part {
     uint64_t next_node = 0, next_group = 0;
+    std::vector<LeafToPack> leaves;
   };
+
+  template <typename Work>
+  static void on_every_thread(size_t count, Work&& work) {
+    std::atomic<size_t> next{0};
+    const auto worker = [&] {
+      for (size_t i; (i = next.fetch_add(1)) < count;) work(i);
+    };
+    const unsigned threads = std::max(1u, std::min(std::thread::hardware_concurrency(), 64u));
+    std::vector<std::thread> helpers;
+    for (unsigned t = 1; t < threads && t < count; ++t) helpers.emplace_back(worker);
+    worker();
+    for (std::thread& t : helpers) t.join();
+  }
 
   /// The BVH2 nodes that become the slots of the wide node made from `source`.
   uint32_t slots_of(uint32_t source, std::array<uint32_t, W>& slots) const {
@@ -287,32 +308,32 @@ class Collapse {
     return sizes;
   }
 
-  void fill(const Task& task, Cursor& at, std::vector<Task>& tasks) const {
+  void fill(const Task& task, HugePageVector<Node>& nodes, Part& part, std::vector<Task>& tasks) const {
     std::array<uint32_t, W> slots{};
     const uint32_t used = slots_of(task.source, slots);
-    Node& node = (*at.nodes)[task.wide];
+    Node& node = nodes[task.wide];
     for (uint32_t k = 0; k < used; ++k) {
       set_slot_box(node, k, bvh_.nodes[slots[k]]);
       if (slot_is_leaf<W>(bvh_, plans_, slots[k])) {
         const Subtree& leaf = subtrees_[slots[k]];
-        node.child[k] = static_cast<uint32_t>(at.next_group);
+        node.child[k] = static_cast<uint32_t>(part.next_group);
         node.count[k] = bvh_group_count(leaf.count);
-        pack_leaf(leaf, at.groups->data() + at.next_group, triangle_at_);
-        at.next_group += node.count[k];
+        part.leaves.push_back({part.next_group, leaf});
+        part.next_group += node.count[k];
         continue;
       }
-      const auto index = static_cast<uint32_t>(at.next_node++);
+      const auto index = static_cast<uint32_t>(part.next_node++);
       node.child[k] = index;
       node.count[k] = 0;
-      (*at.nodes)[index] = empty_wide_node<Node, W>();
+      nodes[index] = empty_wide_node<Node, W>();
       tasks.push_back({index, slots[k]});
     }
   }
 
-  const Bvh& bvh_;
+  Bvh& bvh_;
   const TriangleAt& triangle_at_;
-  const HugePageVector<Subtree> subtrees_;
-  const HugePageVector<SlotPlan<W>> plans_;
+  HugePageVector<Subtree> subtrees_;
+  HugePageVector<SlotPlan<W>> plans_;
 };
 
 }  // namespace
@@ -323,19 +344,26 @@ bool bvh_avx2_enabled() {
   return __builtin_cpu_supports("avx2");
 }
 
-void build_wide_bvh(Bvh& bvh) {
-  build_wide_bvh(bvh, [&bvh](uint32_t place) { return bvh.triangles[place]; });
-}
+namespace {
 
-void build_wide_bvh(Bvh& bvh, const TriangleAt& triangle_at) {
+void collapse(Bvh& bvh, const TriangleAt& triangle_at, bool release) {
   bvh.wide_nodes.clear();
   bvh.wide8_nodes.clear();
   bvh.groups.clear();
   if (bvh.nodes.empty()) return;
   if (bvh_avx2_enabled())
-    Collapse<BvhWideNode8, kBvhWidth8>(bvh, triangle_at).run(bvh.wide8_nodes, bvh.groups);
+    Collapse<BvhWideNode8, kBvhWidth8>(bvh, triangle_at).run(bvh.wide8_nodes, bvh.groups, release);
   else
-    Collapse<BvhWideNode, kBvhWidth>(bvh, triangle_at).run(bvh.wide_nodes, bvh.groups);
+    Collapse<BvhWideNode, kBvhWidth>(bvh, triangle_at).run(bvh.wide_nodes, bvh.groups, release);
 }
+
+}  // namespace
+
+void build_wide_bvh(Bvh& bvh) {
+  collapse(
+      bvh, [&bvh](uint32_t place) { return bvh.triangles[place]; }, false);
+}
+
+void build_wide_bvh(Bvh& bvh, const TriangleAt& triangle_at) { collapse(bvh, triangle_at, true); }
 
 }  // namespace lueur
