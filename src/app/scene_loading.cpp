@@ -15,14 +15,9 @@ SceneLoading::SceneLoading(std::string path, const SceneOptions& options, float 
     try {
       result = open_scene(path_, options, aspect, available_memory(), [this](LoadStage stage, double done) {
         std::lock_guard lock(mutex_);
-        const std::string name = load_stage_name(stage);
-        if (name != stage_) {
-          if (stage_ != "starting") {
-            char line[96];
-            std::snprintf(line, sizeof line, "%s %.2f s", stage_.c_str(), seconds_since(stage_start_));
-            finished_stages_.push_back(line);
-          }
-          stage_ = name;
+        if (!stage_ || *stage_ != stage) {
+          if (stage_) finished_stages_.push_back({*stage_, seconds_since(stage_start_)});
+          stage_ = stage;
           stage_start_ = Clock::now();
         }
         stage_done_ = done;
@@ -46,7 +41,8 @@ std::string SceneLoading::status() const {
   char elapsed[32];
   std::snprintf(elapsed, sizeof elapsed, " (%.1f s)", seconds);
   std::lock_guard lock(mutex_);
-  return "loading " + (path_.empty() ? std::string("the default scene") : path_) + ": " + stage_ + elapsed;
+  return "loading " + (path_.empty() ? std::string("the default scene") : path_) + ": " +
+         (stage_ ? load_stage_name(*stage_) : "starting") + elapsed;
 }
 
 double SceneLoading::stage_done() const {
@@ -56,7 +52,9 @@ double SceneLoading::stage_done() const {
 
 std::vector<std::string> SceneLoading::finished_stages() const {
   std::lock_guard lock(mutex_);
-  return finished_stages_;
+  std::vector<std::string> lines;
+  for (const StageTime& time : finished_stages_) lines.push_back(describe_stage_times({time}));
+  return lines;
 }
 
 bool SceneLoading::finished() const {

@@ -37,10 +37,10 @@ class SceneLoading {
   std::string path_;
   Clock::time_point start_;
   mutable std::mutex mutex_;
-  std::string stage_ = "starting";
+  std::optional<LoadStage> stage_;  ///< none until the first stage starts
   double stage_done_ = -1.0;
   Clock::time_point stage_start_;
-  std::vector<std::string> finished_stages_;
+  std::vector<StageTime> finished_stages_;
   bool finished_ = false;
   std::optional<OpenedScene> result_;
   std::string error_;

@@ -78,7 +78,6 @@ OpenedScene open_scene(const std::string& path, const SceneOptions& options, flo
     opened.warnings = std::move(loaded.warnings);
     opened.files = std::move(loaded.files);
     opened.stage_times = std::move(loaded.stage_times);
-    opened.outside_view = frame_box(scene.bounds(), 45.0f, aspect);
   }
   StageClock clock(progress);
   clock.start(LoadStage::kBvh);
@@ -87,8 +86,9 @@ OpenedScene open_scene(const std::string& path, const SceneOptions& options, flo
   opened.stage_times.insert(opened.stage_times.end(), clock.times().begin(), clock.times().end());
   if (!path.empty()) {
     const TracedScene& traced = *opened.traced;
-    if (const std::optional<Enclosure> room = find_enclosure(traced.scene.bounds(), accelerator_ray_cast(traced)))
-      opened.inside_view = inside_view(traced.scene.bounds(), *room);
+    opened.outside_view = frame_box(traced.bounds, 45.0f, aspect);
+    if (const std::optional<Enclosure> room = find_enclosure(traced.bounds, accelerator_ray_cast(traced)))
+      opened.inside_view = inside_view(traced.bounds, *room);
   }
   choose_view(path.empty() ? std::string("the default scene") : path, options.start_view, opened);
   return opened;

@@ -3,18 +3,17 @@
 // bottom-up pass finds, for every BVH2 node and every number of slots up to the width, the cheapest way to hand its
 // triangles to a wide node as that many children (leaves of up to kBvhMaxLeafSize triangles, or wide nodes of their
 // own); the wide tree is then read off from the root. Leaves' triangles are packed four to a group,
-// structure-of-arrays. Depends on bvh.h only.
+// structure-of-arrays. Depends on bvh.h and core (the thread pool, freeing arrays) only.
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cstdlib>
 #include <cstring>
 #include <limits>
-#include <thread>
 #include <vector>
 
 #include "bvh/bvh.h"
 #include "core/memory_budget.h"
+#include "core/thread_pool.h"
 
 namespace lueur {
 namespace {
@@ -229,7 +228,8 @@ class Collapse {
       next_node += sizes.nodes - 1;  // its root is the task's node, made by the top
       next_group += sizes.groups;
     }
-    on_every_thread(deferred.size(), [&](size_t i) {
+    ThreadPool pool(std::min(hardware_threads(), 64));
+    pool.parallel_for(static_cast<int>(deferred.size()), [&](int i, int) {
       std::vector<Task> stack{deferred[i]};
       while (!stack.empty()) {
         const Task task = stack.back();
@@ -243,7 +243,7 @@ class Collapse {
     if (release) free_array(bvh_.nodes);
     parts.push_back(std::move(top));
     groups.resize(total.groups);
-    on_every_thread(parts.size(), [&](size_t i) {
+    pool.parallel_for(static_cast<int>(parts.size()), [&](int i, int) {
       for (const LeafToPack& leaf : parts[i].leaves)
         pack_leaf(leaf.triangles, groups.data() + leaf.group, triangle_at_);
       free_array(parts[i].leaves);
@@ -260,19 +260,6 @@ class Collapse {
     uint64_t next_node = 0, next_group = 0;
     std::vector<LeafToPack> leaves;
   };
-
-  template <typename Work>
-  static void on_every_thread(size_t count, Work&& work) {
-    std::atomic<size_t> next{0};
-    const auto worker = [&] {
-      for (size_t i; (i = next.fetch_add(1)) < count;) work(i);
-    };
-    const unsigned threads = std::max(1u, std::min(std::thread::hardware_concurrency(), 64u));
-    std::vector<std::thread> helpers;
-    for (unsigned t = 1; t < threads && t < count; ++t) helpers.emplace_back(worker);
-    worker();
-    for (std::thread& t : helpers) t.join();
-  }
 
   /// The BVH2 nodes that become the slots of the wide node made from `source`.
   uint32_t slots_of(uint32_t source, std::array<uint32_t, W>& slots) const {

@@ -11,6 +11,7 @@ std::shared_ptr<const TracedScene> prepare_scene(Scene scene, AccelKind accel, c
   auto traced = std::make_shared<TracedScene>();
   traced->lights = build_light_table(scene);
   const Box3 box = scene.bounds();
+  traced->bounds = box;
   traced->diagonal = std::max(box.diagonal(), 1e-6f);
   traced->lower = scene.triangles.empty() ? Vec3(0.0f) : box.lo;
   traced->scene = std::move(scene);

@@ -14,6 +14,7 @@ struct TracedScene {
   Scene scene;
   Accelerator accel;
   LightTable lights;
+  Box3 bounds;            ///< the model's bounding box (Scene::bounds), computed once: a pass over every triangle
   float diagonal = 1.0f;  ///< bounding-box diagonal, the scale for default radii
   Vec3 lower{0.0f};       ///< bounding-box corner of the smallest coordinates
 };

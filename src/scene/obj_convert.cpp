@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -17,9 +16,9 @@
 #include <optional>
 #include <sstream>
 #include <string_view>
-#include <thread>
 #include <unordered_set>
 
+#include "core/thread_pool.h"
 #include "scene/light_rig.h"
 #include "scene/obj_text.h"
 #include "scene/polygon.h"
@@ -60,15 +59,14 @@ FileMaterials load_materials(const ParsedObj& parsed, const std::string& mtl_tex
   return file;
 }
 
-/// Keeps tinyobjloader's warnings, each once and labelled. Its "material not found" lines are dropped: ours name
-/// the line (explain_default_material). Its MTL warnings end in "(line N in .mtl.)" and are labelled with the MTL
-/// file when there is only one.
-void relabel_parser_warnings(string_view text, const std::string& label, const std::vector<MtlSource>& mtl_sources,
-                             std::vector<std::string>& warnings) {
+/// Keeps tinyobjloader's MTL warnings, each once and labelled: those ending in "(line N in .mtl.)" with the MTL file
+/// when there is only one, the rest with the OBJ.
+void relabel_mtl_warnings(string_view text, const std::string& label, const std::vector<MtlSource>& mtl_sources,
+                          std::vector<std::string>& warnings) {
   std::unordered_set<std::string> seen;
   for_each_line(text, [&](size_t, string_view line) {
     line = trim(line);
-    if (line.empty() || line == "." || line.substr(0, 12) == "material [ '") return;
+    if (line.empty() || line == ".") return;
     const bool about_mtl = line.find("in .mtl") != string_view::npos && mtl_sources.size() == 1;
     const std::string& where = about_mtl ? mtl_sources.front().label : label;
     if (seen.insert(std::string(line)).second) warnings.push_back(where + ": " + std::string(line));
@@ -279,16 +277,10 @@ void gather_triangles(ParsedObj& parsed, const std::vector<uint32_t>& normal_rem
                       unsigned threads, Scene& scene) {
   scene.triangles.resize(parsed.totals.triangles);
   std::vector<uint64_t> written(parsed.chunks.size(), 0);
-  std::atomic<size_t> next{0};
-  const auto work = [&] {
-    for (size_t k; (k = next.fetch_add(1)) < parsed.chunks.size();)
-      written[k] = convert_faces(parsed.chunks[k], materials.incoming[k], materials.of_usemtl[k], normal_remap, scene,
-                                 parsed.before[k].triangles);
-  };
-  std::vector<std::thread> helpers;
-  for (unsigned t = 1; t < threads && t < parsed.chunks.size(); ++t) helpers.emplace_back(work);
-  work();
-  for (std::thread& t : helpers) t.join();
+  ThreadPool(static_cast<int>(threads)).parallel_for(static_cast<int>(parsed.chunks.size()), [&](int k, int) {
+    written[k] = convert_faces(parsed.chunks[k], materials.incoming[k], materials.of_usemtl[k], normal_remap, scene,
+                               parsed.before[k].triangles);
+  });
   uint64_t end = 0;
   for (size_t k = 0; k < parsed.chunks.size(); ++k) {
     const auto from = scene.triangles.begin() + static_cast<ptrdiff_t>(parsed.before[k].triangles);
@@ -414,7 +406,7 @@ LoadedScene build_scene(ParsedObj& parsed, const std::string& label, const std::
   const MtlStream mtl = merge_mtl_sources(mtl_sources, warnings);
   std::string mtl_warnings;
   const FileMaterials file = load_materials(parsed, mtl.text, mtl_warnings);
-  relabel_parser_warnings(mtl_warnings, label, mtl_sources, warnings);
+  relabel_mtl_warnings(mtl_warnings, label, mtl_sources, warnings);
 
   Scene& scene = result.scene;
   scene.name = scene_name;
@@ -422,7 +414,7 @@ LoadedScene build_scene(ParsedObj& parsed, const std::string& label, const std::
   const std::vector<uint32_t> normal_remap = gather_normals(parsed, label, scene, warnings);
   MaterialTable materials = gather_materials(file.materials, mtl.entries, scene);
   const FaceMaterials face_materials = resolve_face_materials(parsed, file, materials, scene);
-  gather_triangles(parsed, normal_remap, face_materials, load_threads(options.threads), scene);
+  gather_triangles(parsed, normal_remap, face_materials, options.threads, scene);
   free_array(parsed.chunks);
   release_free_memory();
 

@@ -4,10 +4,9 @@
 #include "scene/obj_read.h"
 
 #include <algorithm>
-#include <exception>
-#include <mutex>
-#include <thread>
+#include <atomic>
 
+#include "core/thread_pool.h"
 #include "scene/obj_loader.h"
 #include "scene/obj_text.h"
 
@@ -69,11 +68,10 @@ void place(ObjChunk& chunk, const ObjCounts& before) {
 
 }  // namespace
 
-unsigned load_threads(unsigned asked) { return asked > 0 ? asked : std::max(1u, std::thread::hardware_concurrency()); }
-
 ParsedObj parse_obj(string_view text, const std::string& label, const MemoryBudget& budget,
                     const ReadSchedule& schedule) {
-  const unsigned threads = load_threads(schedule.threads);
+  ThreadPool pool(static_cast<int>(schedule.threads));
+  const auto threads = static_cast<size_t>(pool.thread_count());
   const size_t chunk_bytes = schedule.chunk_bytes > 0
                                  ? schedule.chunk_bytes
                                  : std::max<size_t>(size_t{1} << 20, text.size() / (8 * threads) + 1);
@@ -81,31 +79,21 @@ ParsedObj parse_obj(string_view text, const std::string& label, const MemoryBudg
 
   ParsedObj parsed;
   parsed.chunks.resize(spans.size());
-  std::atomic<size_t> next{0};
   std::atomic<uint64_t> memory_needed{0}, bytes_done{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  const auto work = [&](bool reports) {
-    for (size_t k; (k = next.fetch_add(1)) < spans.size();) {
-      ParseContext context{label, budget, text.size()};
-      context.memory_needed = &memory_needed;
-      try {
-        parse_chunk(spans[k], context, parsed.chunks[k]);
-      } catch (const SceneError&) {
-        parsed.chunks[k].refused = true;  // read again below, with the counts before it, for the message
-      } catch (...) {
-        const std::lock_guard lock(failure_mutex);
-        if (!failure) failure = std::current_exception();
-      }
-      const uint64_t done = bytes_done.fetch_add(spans[k].size()) + spans[k].size();
-      if (reports && schedule.progress) schedule.progress(static_cast<double>(done) / static_cast<double>(text.size()));
+  // Anything but a refused line (out of memory) ends the loop and is rethrown here by the pool.
+  pool.parallel_for(static_cast<int>(spans.size()), [&](int k, int worker) {
+    ParseContext context{label, budget, text.size()};
+    context.memory_needed = &memory_needed;
+    try {
+      parse_chunk(spans[k], context, parsed.chunks[k]);
+    } catch (const SceneError&) {
+      parsed.chunks[k].refused = true;  // read again below, with the counts before it, for the message
     }
-  };
-  std::vector<std::thread> helpers;
-  for (unsigned t = 1; t < threads && t < spans.size(); ++t) helpers.emplace_back(work, false);
-  work(true);
-  for (std::thread& t : helpers) t.join();
-  if (failure) std::rethrow_exception(failure);
+    const uint64_t done = bytes_done.fetch_add(spans[k].size()) + spans[k].size();
+    // Worker 0 is the calling thread, the one progress is told from.
+    if (worker == 0 && schedule.progress)
+      schedule.progress(static_cast<double>(done) / static_cast<double>(text.size()));
+  });
 
   // The join, in file order: a chunk that does not hold up with the counts before it is parsed again with them,
   // which refuses its first bad line by the file's number (or finds it sound: then its new reading stands).

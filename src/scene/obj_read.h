@@ -33,9 +33,6 @@ struct ReadSchedule {
   std::function<void(double done)> progress;
 };
 
-/// `asked` threads, or every core for 0.
-unsigned load_threads(unsigned asked);
-
 /// Parses `text` (reported as `label`); throws SceneError "label:line: ..." for the first line refused, as a
 /// one-thread read would, whatever the chunks.
 ParsedObj parse_obj(std::string_view text, const std::string& label, const MemoryBudget& budget,

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <cstring>
 #include <numeric>
-#include <thread>
 
 #include "core/memory_budget.h"
+#include "core/thread_pool.h"
 #include "scene/scene.h"
 
 namespace lueur {
@@ -21,20 +21,28 @@ bool less_xyz(const Vec3& a, const Vec3& b) {
   return a.z < b.z;
 }
 
-/// Runs work(begin, end) over `count` items cut into `parts` consecutive ranges, one thread each.
-template <typename Work>
-void in_ranges(size_t count, unsigned parts, Work&& work) {
-  parts = static_cast<unsigned>(std::max<size_t>(1, std::min<size_t>(parts, count / 4096 + 1)));
-  std::vector<std::thread> helpers;
-  for (unsigned p = 1; p < parts; ++p)
-    helpers.emplace_back([&, p] { work(count * p / parts, count * (p + 1) / parts, p); });
-  work(0, count / parts, 0u);
-  for (std::thread& t : helpers) t.join();
-}
+/// `count` items cut into consecutive ranges, one per thread of `pool` where there are enough items for it.
+struct Ranges {
+  Ranges(size_t items, const ThreadPool& pool)
+      : count(items), parts(static_cast<unsigned>(std::clamp<size_t>(items / 4096 + 1, 1, pool.thread_count()))) {}
+  size_t begin(unsigned part) const { return count * part / parts; }
+  size_t end(unsigned part) const { return count * (part + 1) / parts; }
+  /// Runs work(begin, end, part, on_calling_thread) for every range on `pool`.
+  template <typename Work>
+  void run(ThreadPool& pool, Work&& work) const {
+    pool.parallel_for(static_cast<int>(parts), [&](int part, int worker) {
+      const auto p = static_cast<unsigned>(part);
+      work(begin(p), end(p), p, worker == 0);
+    });
+  }
+
+  size_t count;
+  unsigned parts;
+};
 
 /// Gives every position the id of its group of exactly equal positions, so that triangle soups (each triangle with
 /// its own copies of the corners) smooth like indexed meshes. Ids follow the positions' order (x, then y, then z).
-std::vector<uint32_t> weld_positions(const std::vector<Vec3>& positions, unsigned threads) {
+std::vector<uint32_t> weld_positions(const std::vector<Vec3>& positions, ThreadPool& pool) {
   std::vector<uint32_t> weld(positions.size());
   std::vector<uint32_t> order;
   order.reserve(positions.size());
@@ -49,13 +57,13 @@ std::vector<uint32_t> weld_positions(const std::vector<Vec3>& positions, unsigne
   }
   const auto less = [&](uint32_t a, uint32_t b) { return less_xyz(positions[a], positions[b]); };
   // Sorted in ranges on every thread, then merged: the ids only depend on the positions' order.
-  in_ranges(order.size(), threads, [&](size_t begin, size_t end, unsigned) {
+  const Ranges ranges(order.size(), pool);
+  ranges.run(pool, [&](size_t begin, size_t end, unsigned, bool) {
     std::sort(order.begin() + static_cast<ptrdiff_t>(begin), order.begin() + static_cast<ptrdiff_t>(end), less);
   });
-  const unsigned parts = static_cast<unsigned>(std::max<size_t>(1, std::min<size_t>(threads, order.size() / 4096 + 1)));
-  for (unsigned p = 1; p < parts; ++p)
-    std::inplace_merge(order.begin(), order.begin() + static_cast<ptrdiff_t>(order.size() * p / parts),
-                       order.begin() + static_cast<ptrdiff_t>(order.size() * (p + 1) / parts), less);
+  for (unsigned p = 1; p < ranges.parts; ++p)
+    std::inplace_merge(order.begin(), order.begin() + static_cast<ptrdiff_t>(ranges.begin(p)),
+                       order.begin() + static_cast<ptrdiff_t>(ranges.end(p)), less);
   for (size_t k = 0; k < order.size(); ++k) {
     if (k == 0 || less_xyz(positions[order[k - 1]], positions[order[k]])) ++next_id;
     weld[order[k]] = next_id - 1;
@@ -147,7 +155,7 @@ struct Distinct {
 
 void compute_smooth_normals(Scene& scene, float crease_degrees, unsigned threads,
                             const std::function<void(double done)>& progress) {
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  ThreadPool pool(static_cast<int>(threads));
   // Reported at the end of each step by the rough share of the time up to there; the groups, group by group.
   const auto report = [&](double done) {
     if (progress) progress(done);
@@ -162,7 +170,7 @@ void compute_smooth_normals(Scene& scene, float crease_degrees, unsigned threads
   // read are at hand, rather than corner by corner in the scattered order of the groups below.
   std::vector<Vec3> face_normal(triangle_count, Vec3(0.0f));
   std::vector<float> corner_weight(3 * triangle_count);
-  in_ranges(triangle_count, threads, [&](size_t begin, size_t end, unsigned) {
+  Ranges(triangle_count, pool).run(pool, [&](size_t begin, size_t end, unsigned, bool) {
     for (size_t t = begin; t < end; ++t) {
       const Vec3 raw = scene.geometric_normal_raw(static_cast<uint32_t>(t));
       const float length = glm::length(raw);
@@ -179,7 +187,7 @@ void compute_smooth_normals(Scene& scene, float crease_degrees, unsigned threads
 
   report(0.15);
   // Corners grouped by welded position (compressed rows: corners of group g lie in [start[g], start[g+1])).
-  const std::vector<uint32_t> weld = weld_positions(scene.positions, threads);
+  const std::vector<uint32_t> weld = weld_positions(scene.positions, pool);
   const uint32_t group_count = weld.empty() ? 0u : *std::max_element(weld.begin(), weld.end()) + 1u;
   std::vector<uint32_t> start(group_count + 1, 0);
   for (uint32_t t = 0; t < triangle_count; ++t) {
@@ -202,16 +210,16 @@ void compute_smooth_normals(Scene& scene, float crease_degrees, unsigned threads
 
   // Per range of groups, each corner gets its normal's index in the range's own interner; the ranges' interners are
   // then joined in order and the corners renumbered.
-  const unsigned parts = static_cast<unsigned>(std::max<size_t>(1, std::min<size_t>(threads, group_count / 4096 + 1)));
-  std::vector<NormalInterner> interners(parts);
-  in_ranges(group_count, parts, [&](size_t group_begin, size_t group_end, unsigned part) {
+  const Ranges groups(group_count, pool);
+  std::vector<NormalInterner> interners(groups.parts);
+  groups.run(pool, [&](size_t group_begin, size_t group_end, unsigned part, bool calling_thread) {
     NormalInterner& interner = interners[part];
     // Per group, corners whose faces share one normal get one result: a flat fan around a vertex of a 5000-gon
     // costs one sum, not 5000 x 5000.
     std::vector<Distinct> distinct;
     std::vector<uint32_t> order;
     for (size_t g = group_begin; g < group_end; ++g) {
-      if (part == 0 && (g - group_begin) % 65536 == 65535)  // the calling thread's range stands for all
+      if (calling_thread && (g - group_begin) % 65536 == 65535)  // the calling thread's range stands for all
         report(0.4 + 0.45 * static_cast<double>(g - group_begin) / static_cast<double>(group_end - group_begin));
       const uint32_t begin = start[g];
       const uint32_t end = start[g + 1];
@@ -243,11 +251,11 @@ void compute_smooth_normals(Scene& scene, float crease_degrees, unsigned threads
   report(0.85);
   // The first range's indices are already the file's; the others' are renumbered into it.
   NormalInterner all = std::move(interners[0]);
-  std::vector<std::vector<uint32_t>> renumber(parts);
-  for (unsigned part = 1; part < parts; ++part)
+  std::vector<std::vector<uint32_t>> renumber(groups.parts);
+  for (unsigned part = 1; part < groups.parts; ++part)
     for (const Vec3& n : interners[part].normals) renumber[part].push_back(all.intern(n));
   interners.clear();
-  in_ranges(group_count, parts, [&](size_t group_begin, size_t group_end, unsigned part) {
+  groups.run(pool, [&](size_t group_begin, size_t group_end, unsigned part, bool) {
     if (part == 0) return;
     for (uint32_t i = start[group_begin]; i < start[group_end]; ++i) {
       uint32_t& index = triangles[corners[i] / 3].n[corners[i] % 3];

@@ -57,7 +57,9 @@ PanelActions draw_panel(PanelModel& m, float height, bool over_image) {
   ImGui::TextDisabled("Tab hides the panel; keys: last section");
   if (!m.status.empty()) {
     for (const std::string& stage : m.status_stages) ImGui::TextDisabled("  %s", stage.c_str());
-    ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.3f, 1.0f), "%s", m.status.c_str());
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.85f, 0.3f, 1.0f));
+    ImGui::TextWrapped("%s", m.status.c_str());  // a long path must not push the time out of the panel
+    ImGui::PopStyleColor();
     if (m.status_done >= 0.0) ImGui::ProgressBar(static_cast<float>(m.status_done), ImVec2(-1.0f, 0.0f));
   }
   if (!m.message.empty()) {
