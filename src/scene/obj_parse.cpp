@@ -42,6 +42,20 @@ bool is_known_statement(string_view keyword) {
 /// How often (in elements) a chunk adds what it read to the shared running total.
 constexpr uint64_t kElementsPerSharedCheck = 1 << 16;
 
+/// Throws SceneError at the line where counts `s` (with `text_bytes` of text) do not fit (scene_fits).
+void check_scene_size(const ObjCounts& s, uint64_t text_bytes, const std::string& label, size_t line,
+                      const MemoryBudget& budget) {
+  if (scene_fits(s, text_bytes, budget)) return;
+  if (s.vertices > kMaxElements || s.triangles > kMaxElements)
+    fail_at(label, line, "scene too large: more than " + std::to_string(kMaxElements) + " vertices or triangles");
+  std::string what = std::to_string(s.vertices);
+  what += " vertices and ";
+  what += std::to_string(s.triangles);
+  what += " triangles by this line need";
+  fail_at(label, line,
+          too_large(what, scene_memory_bytes(text_bytes, s.vertices, s.normals, s.texcoords, s.triangles), budget));
+}
+
 /// One chunk being parsed: its context, its output and the line at hand.
 struct ChunkParser {
   const ParseContext& context;
@@ -237,18 +251,9 @@ void parse_element(string_view keyword, string_view rest, ChunkParser& p) {
 
 }  // namespace
 
-void check_scene_size(const ObjCounts& s, uint64_t text_bytes, const std::string& label, size_t line,
-                      const MemoryBudget& budget) {
-  if (s.vertices > kMaxElements || s.triangles > kMaxElements)
-    fail_at(label, line, "scene too large: more than " + std::to_string(kMaxElements) + " vertices or triangles");
-  const uint64_t needed = scene_memory_bytes(text_bytes, s.vertices, s.normals, s.texcoords, s.triangles);
-  if (needed > budget.bytes) {
-    std::string what = std::to_string(s.vertices);
-    what += " vertices and ";
-    what += std::to_string(s.triangles);
-    what += " triangles by this line need";
-    fail_at(label, line, too_large(what, needed, budget));
-  }
+bool scene_fits(const ObjCounts& s, uint64_t text_bytes, const MemoryBudget& budget) {
+  return s.vertices <= kMaxElements && s.triangles <= kMaxElements &&
+         scene_memory_bytes(text_bytes, s.vertices, s.normals, s.texcoords, s.triangles) <= budget.bytes;
 }
 
 void parse_chunk(string_view text, const ParseContext& context, ObjChunk& out) {

@@ -111,8 +111,8 @@ struct ParseContext {
 /// Parses `text` (whole lines) into `out`. Throws SceneError "label:line: ..." at the first line refused.
 void parse_chunk(std::string_view text, const ParseContext& context, ObjChunk& out);
 
-/// Throws SceneError at the line where counts `so_far` (with `text_bytes` of text) need more than the budget.
-void check_scene_size(const ObjCounts& so_far, uint64_t text_bytes, const std::string& label, size_t line,
-                      const MemoryBudget& budget);
+/// Whether counts `so_far` (with `text_bytes` of text) stay within Scene's 32-bit indices and the memory budget: the
+/// check every line makes, and the join makes at each chunk's end.
+bool scene_fits(const ObjCounts& so_far, uint64_t text_bytes, const MemoryBudget& budget);
 
 }  // namespace lueur::obj

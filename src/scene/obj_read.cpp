@@ -41,12 +41,8 @@ bool holds_with(const ObjChunk& chunk, const ObjCounts& before, uint64_t text_by
     return false;
   ObjCounts after = before;
   after.add(chunk.counts);
-  if (after.triangulation_work > kMaxTriangulationWork || after.vertices > kMaxElements ||
-      after.triangles > kMaxElements)
-    return false;
-  // The estimate grows with every line, so the chunk's last line is the one to check.
-  return scene_memory_bytes(text_bytes, after.vertices, after.normals, after.texcoords, after.triangles) <=
-         budget.bytes;
+  // Both grow with every line, so the chunk's last line is the one to check.
+  return after.triangulation_work <= kMaxTriangulationWork && scene_fits(after, text_bytes, budget);
 }
 
 /// Gives a chunk parsed without the counts before it the file's line numbers and indices.
