@@ -1,15 +1,19 @@
 // Smooth shading normals (compute_smooth_normals in scene.h): corners grouped by welded position, each group's
 // distinct face normals blended within the crease angle, and the results interned so that equal normals share one
-// entry. The groups are shared out among threads in ranges; each interns its own results in order and the ranges
-// are then joined in order, which gives every normal the index a one-thread pass would.
+// entry, numbered as they are first met in the positions' sorted order (x, then y, then z).
+//
+// The work is split by what each step reads. The blends are computed group by group in vertex order, where a
+// file's triangles keep the corners of neighbouring vertices close; only the interning walks the groups in sorted
+// order, one look-up a group. Both run on every thread in ranges; the ranges' interners are then joined in order,
+// which gives every normal the index a one-thread pass would.
 // Depends on core and scene.h only.
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <numeric>
 
 #include "core/memory_budget.h"
 #include "core/thread_pool.h"
+#include "scene/normal_interner.h"
 #include "scene/scene.h"
 
 namespace lueur {
@@ -40,23 +44,33 @@ struct Ranges {
   unsigned parts;
 };
 
-/// Gives every position the id of its group of exactly equal positions, so that triangle soups (each triangle with
-/// its own copies of the corners) smooth like indexed meshes. Ids follow the positions' order (x, then y, then z).
-std::vector<uint32_t> weld_positions(const std::vector<Vec3>& positions, ThreadPool& pool) {
-  std::vector<uint32_t> weld(positions.size());
-  std::vector<uint32_t> order;
+/// Positions welded by exact equality, so that triangle soups (each triangle with its own copies of the corners)
+/// smooth like indexed meshes.
+struct Weld {
+  /// Per position, the smallest index of a position equal to it (a group's name, in the file's vertex order).
+  std::vector<uint32_t> representative;
+  /// One representative per distinct finite position, in the positions' sorted order (x, then y, then z).
+  std::vector<uint32_t> sorted;
+};
+
+Weld weld_positions(const std::vector<Vec3>& positions, ThreadPool& pool) {
+  Weld weld;
+  weld.representative.resize(positions.size());
+  // Sorted as (position, index) records rather than indices, so that the comparisons read memory in order.
+  struct Keyed {
+    Vec3 position;
+    uint32_t index;
+  };
+  std::vector<Keyed> order;
   order.reserve(positions.size());
-  uint32_t next_id = 0;
   for (uint32_t i = 0; i < positions.size(); ++i) {
-    // NaN would break the strict weak ordering of the sort; such points simply stay alone.
-    if (is_finite(positions[i])) {
-      order.push_back(i);
-    } else {
-      weld[i] = next_id++;
-    }
+    weld.representative[i] = i;
+    // NaN would break the strict weak ordering of the sort; such points simply stay alone (and, being no part of
+    // a usable face, are never smoothed).
+    if (is_finite(positions[i])) order.push_back({positions[i], i});
   }
-  const auto less = [&](uint32_t a, uint32_t b) { return less_xyz(positions[a], positions[b]); };
-  // Sorted in ranges on every thread, then merged: the ids only depend on the positions' order.
+  const auto less = [](const Keyed& a, const Keyed& b) { return less_xyz(a.position, b.position); };
+  // Sorted in ranges on every thread, then merged: equal positions end up next to each other in any order.
   const Ranges ranges(order.size(), pool);
   ranges.run(pool, [&](size_t begin, size_t end, unsigned, bool) {
     std::sort(order.begin() + static_cast<ptrdiff_t>(begin), order.begin() + static_cast<ptrdiff_t>(end), less);
@@ -64,9 +78,13 @@ std::vector<uint32_t> weld_positions(const std::vector<Vec3>& positions, ThreadP
   for (unsigned p = 1; p < ranges.parts; ++p)
     std::inplace_merge(order.begin(), order.begin() + static_cast<ptrdiff_t>(ranges.begin(p)),
                        order.begin() + static_cast<ptrdiff_t>(ranges.end(p)), less);
-  for (size_t k = 0; k < order.size(); ++k) {
-    if (k == 0 || less_xyz(positions[order[k - 1]], positions[order[k]])) ++next_id;
-    weld[order[k]] = next_id - 1;
+  for (size_t run_begin = 0, run_end = 0; run_begin < order.size(); run_begin = run_end) {
+    uint32_t smallest = order[run_begin].index;
+    for (run_end = run_begin + 1;
+         run_end < order.size() && !less_xyz(order[run_begin].position, order[run_end].position); ++run_end)
+      smallest = std::min(smallest, order[run_end].index);
+    for (size_t k = run_begin; k < run_end; ++k) weld.representative[order[k].index] = smallest;
+    weld.sorted.push_back(smallest);
   }
   return weld;
 }
@@ -78,78 +96,240 @@ float corner_angle(const Vec3& at, const Vec3& a, const Vec3& b) {
   return std::atan2(glm::length(glm::cross(e1, e2)), glm::dot(e1, e2));
 }
 
-/// Equal normals (bit for bit, -0 folded into +0) share one index, given in the order they were first seen: an open
-/// addressing table of indices into `normals`.
-class NormalInterner {
- public:
-  uint32_t intern(const Vec3& n) {
-    if (2 * (normals.size() + 1) > slots_.size()) grow();
-    const Key key = key_of(n);
-    for (size_t slot = hash(key) & mask_;; slot = (slot + 1) & mask_) {
-      const uint32_t index = slots_[slot];
-      if (index == kEmpty) {
-        slots_[slot] = static_cast<uint32_t>(normals.size());
-        normals.push_back(n);
-        keys_.push_back(key);
-        return slots_[slot];
+/// Unit face normals (zero for zero-area or overflowing triangles, which take no part) and each corner's angle,
+/// which weighs its face's normal.
+struct Faces {
+  std::vector<Vec3> normal;
+  std::vector<float> corner_weight;
+  bool usable(uint32_t t) const { return normal[t] != Vec3(0.0f); }
+};
+
+Faces measure_faces(const Scene& scene, ThreadPool& pool) {
+  const size_t triangle_count = scene.triangles.size();
+  Faces faces{std::vector<Vec3>(triangle_count, Vec3(0.0f)), std::vector<float>(3 * triangle_count)};
+  Ranges(triangle_count, pool).run(pool, [&](size_t begin, size_t end, unsigned, bool) {
+    for (size_t t = begin; t < end; ++t) {
+      const Vec3 raw = scene.geometric_normal_raw(static_cast<uint32_t>(t));
+      const float length = glm::length(raw);
+      if (length > 0.0f && std::isfinite(length)) faces.normal[t] = raw / length;
+      const Triangle& tri = scene.triangles[t];
+      for (uint32_t c = 0; c < 3; ++c) {
+        const float angle = corner_angle(scene.positions[tri.v[c]], scene.positions[tri.v[(c + 1) % 3]],
+                                         scene.positions[tri.v[(c + 2) % 3]]);
+        faces.corner_weight[3 * t + c] = std::isfinite(angle) ? angle : 0.0f;
       }
-      if (keys_[index] == key) return index;
     }
-  }
+  });
+  return faces;
+}
 
+/// Compressed rows: the corners (3 t + c) of usable faces at the positions welded to representative v lie in
+/// corners[start[v], start[v + 1]), in triangle order.
+struct CornerGroups {
+  std::vector<uint32_t> start;
+  std::vector<uint32_t> corners;
+};
+
+CornerGroups group_corners(const Scene& scene, const Weld& weld, const Faces& faces) {
+  CornerGroups groups;
+  groups.start.assign(scene.positions.size() + 1, 0);
+  const auto triangle_count = static_cast<uint32_t>(scene.triangles.size());
+  for (uint32_t t = 0; t < triangle_count; ++t) {
+    if (!faces.usable(t)) continue;
+    for (uint32_t c = 0; c < 3; ++c) ++groups.start[weld.representative[scene.triangles[t].v[c]] + 1];
+  }
+  std::partial_sum(groups.start.begin(), groups.start.end(), groups.start.begin());
+  groups.corners.resize(groups.start.back());
+  std::vector<uint32_t> fill(groups.start.begin(), groups.start.end() - 1);
+  for (uint32_t t = 0; t < triangle_count; ++t) {
+    if (!faces.usable(t)) continue;
+    for (uint32_t c = 0; c < 3; ++c) groups.corners[fill[weld.representative[scene.triangles[t].v[c]]]++] = 3 * t + c;
+  }
+  return groups;
+}
+
+/// Every group's results: a blended normal per distinct face normal at the position, in the face normals' sorted
+/// order, those that blend all of them (the same sum) kept once; group v's lie in normals[start[v], start[v + 1]).
+struct Blends {
   std::vector<Vec3> normals;
+  std::vector<uint32_t> start;
+};
 
- private:
-  struct Key {
-    uint32_t bits[3];
-    bool operator==(const Key& other) const {
-      return bits[0] == other.bits[0] && bits[1] == other.bits[1] && bits[2] == other.bits[2];
+/// Blends each group's distinct face normals within the crease, group by group in vertex order, and writes into
+/// each corner's normal index its result's place within the group.
+Blends blend_groups(Scene& scene, const Faces& faces, const CornerGroups& groups, float cos_crease, ThreadPool& pool,
+                    const std::function<void(double)>& report) {
+  const size_t vertex_count = groups.start.size() - 1;
+  const Ranges ranges(vertex_count, pool);
+  // Each range's results first go to its own array, placed after the earlier ranges' once all are done.
+  std::vector<std::vector<Vec3>> range_normals(ranges.parts);
+  Blends blends;
+  blends.start.assign(vertex_count + 1, 0);
+  ranges.run(pool, [&](size_t vertex_begin, size_t vertex_end, unsigned part, bool calling_thread) {
+    std::vector<Vec3>& results = range_normals[part];
+    // Per group, corners whose faces share one normal get one result: a flat fan around a vertex of a 5000-gon
+    // costs one sum, not 5000 x 5000.
+    struct Distinct {
+      Vec3 normal;
+      float weight;
+    };
+    std::vector<Distinct> distinct;
+    std::vector<uint32_t> order;
+    std::vector<uint32_t> slot;  // per distinct normal, its result's place within the group
+    for (size_t v = vertex_begin; v < vertex_end; ++v) {
+      if (calling_thread && (v - vertex_begin) % 65536 == 65535)  // the calling thread's range stands for all
+        report(static_cast<double>(v - vertex_begin) / static_cast<double>(vertex_end - vertex_begin));
+      const auto first_result = static_cast<uint32_t>(results.size());
+      blends.start[v] = first_result;
+      const uint32_t begin = groups.start[v];
+      const uint32_t end = groups.start[v + 1];
+      if (begin == end) continue;
+      order.assign(groups.corners.begin() + begin, groups.corners.begin() + end);
+      std::sort(order.begin(), order.end(),
+                [&](uint32_t a, uint32_t b) { return less_xyz(faces.normal[a / 3], faces.normal[b / 3]); });
+      distinct.clear();
+      for (uint32_t corner : order) {
+        const Vec3& n = faces.normal[corner / 3];
+        if (distinct.empty() || less_xyz(distinct.back().normal, n)) distinct.push_back({n, 0.0f});
+        distinct.back().weight += faces.corner_weight[corner];
+      }
+      // Each distinct normal blends those within the crease, always summed in the same order: where that is all
+      // of them (a smooth vertex), its blend is the group's whole sum, kept once.
+      Vec3 whole(0.0f);
+      for (const Distinct& other : distinct) whole += other.weight * other.normal;
+      const float whole_length = glm::length(whole);
+      const bool whole_usable = whole_length > 1e-12f && std::isfinite(whole_length);
+      uint32_t whole_slot = ~0u;
+      slot.clear();
+      for (const Distinct& d : distinct) {
+        const bool all_within = std::all_of(distinct.begin(), distinct.end(), [&](const Distinct& other) {
+          return glm::dot(d.normal, other.normal) >= cos_crease;
+        });
+        if (all_within && whole_usable) {
+          if (whole_slot == ~0u) {
+            whole_slot = static_cast<uint32_t>(results.size()) - first_result;
+            results.push_back(whole / whole_length);
+          }
+          slot.push_back(whole_slot);
+          continue;
+        }
+        Vec3 sum(0.0f);
+        for (const Distinct& other : distinct)
+          if (glm::dot(d.normal, other.normal) >= cos_crease) sum += other.weight * other.normal;
+        const float length = glm::length(sum);
+        slot.push_back(static_cast<uint32_t>(results.size()) - first_result);
+        results.push_back((length > 1e-12f && std::isfinite(length)) ? sum / length : d.normal);
+      }
+      size_t k = 0;
+      for (uint32_t corner : order) {
+        while (less_xyz(distinct[k].normal, faces.normal[corner / 3])) ++k;
+        scene.triangles[corner / 3].n[corner % 3] = slot[k];
+      }
     }
+  });
+  std::vector<uint32_t> range_base(ranges.parts, 0);
+  for (unsigned part = 1; part < ranges.parts; ++part)
+    range_base[part] = range_base[part - 1] + static_cast<uint32_t>(range_normals[part - 1].size());
+  blends.normals.resize(range_base.back() + range_normals.back().size());
+  blends.start[vertex_count] = static_cast<uint32_t>(blends.normals.size());
+  ranges.run(pool, [&](size_t vertex_begin, size_t vertex_end, unsigned part, bool) {
+    std::copy(range_normals[part].begin(), range_normals[part].end(), blends.normals.begin() + range_base[part]);
+    for (size_t v = vertex_begin; v < vertex_end; ++v) blends.start[v] += range_base[part];
+  });
+  return blends;
+}
+
+/// The ranges' interners joined in order, as one interner fed the ranges one after the other would have numbered
+/// them. Returns the normals; renumber[part][i] becomes the index of the part's normal i among them. Each normal is
+/// looked up in the earlier parts on every thread; only the numbering of the new ones runs in order.
+std::vector<Vec3> join_interners(const std::vector<NormalInterner>& parts, std::vector<std::vector<uint32_t>>& renumber,
+                                 ThreadPool& pool) {
+  const size_t part_count = parts.size();
+  renumber.assign(part_count, {});
+  // first_part[p][i]: the first part holding part p's normal i (p itself when it is new there); renumber[p][i] its
+  // index in that part until the numbering below.
+  std::vector<std::vector<uint32_t>> first_part(part_count);
+  constexpr size_t kSlice = 16384;
+  std::vector<std::pair<uint32_t, size_t>> slices;
+  for (uint32_t p = 0; p < part_count; ++p) {
+    const size_t count = parts[p].normals.size();
+    renumber[p].resize(count);
+    first_part[p].resize(count);
+    for (size_t begin = 0; begin < count; begin += kSlice) slices.emplace_back(p, begin);
+  }
+  const auto for_each_slice = [&](const auto& work) {
+    pool.parallel_for(static_cast<int>(slices.size()), [&](int slice, int) {
+      const auto [p, begin] = slices[static_cast<size_t>(slice)];
+      const size_t end = std::min(begin + kSlice, parts[p].normals.size());
+      for (size_t i = begin; i < end; ++i) work(p, i);
+    });
   };
-  static constexpr uint32_t kEmpty = 0xffffffffu;
-
-  static Key key_of(const Vec3& v) {
-    Key key{};
-    for (int i = 0; i < 3; ++i) {
-      const float value = v[i] + 0.0f;
-      std::memcpy(&key.bits[i], &value, sizeof value);
+  for_each_slice([&](uint32_t p, size_t i) {
+    uint32_t owner = p;
+    auto index = static_cast<uint32_t>(i);
+    for (uint32_t q = 0; q < p; ++q) {
+      const uint32_t found = parts[q].find(parts[p].normals[i]);
+      if (found != NormalInterner::kNotFound) {
+        owner = q;
+        index = found;
+        break;
+      }
     }
-    return key;
-  }
-  static size_t hash(const Key& key) {
-    // Every bit of the three floats moves every bit of the slot (a 64-bit finaliser): smooth normals differ in few
-    // bits, and linear probing punishes clusters.
-    uint64_t h = (uint64_t{key.bits[0]} << 32 | key.bits[1]) ^ (uint64_t{key.bits[2]} * 0x9e3779b97f4a7c15ull);
-    h ^= h >> 33;
-    h *= 0xff51afd7ed558ccdull;
-    h ^= h >> 33;
-    h *= 0xc4ceb9fe1a85ec53ull;
-    h ^= h >> 33;
-    return static_cast<size_t>(h);
-  }
-  void grow() {
-    const size_t size = std::max<size_t>(1024, 2 * slots_.size());
-    slots_.assign(size, kEmpty);
-    mask_ = size - 1;
-    for (uint32_t index = 0; index < keys_.size(); ++index) {
-      size_t slot = hash(keys_[index]) & mask_;
-      while (slots_[slot] != kEmpty) slot = (slot + 1) & mask_;
-      slots_[slot] = index;
+    first_part[p][i] = owner;
+    renumber[p][i] = index;
+  });
+  std::vector<Vec3> joined;
+  for (uint32_t p = 0; p < part_count; ++p)
+    for (size_t i = 0; i < parts[p].normals.size(); ++i)
+      if (first_part[p][i] == p) {
+        renumber[p][i] = static_cast<uint32_t>(joined.size());
+        joined.push_back(parts[p].normals[i]);
+      }
+  // A normal seen before takes the index its first part's copy got above (that copy was new there).
+  for_each_slice([&](uint32_t p, size_t i) {
+    if (first_part[p][i] != p) renumber[p][i] = renumber[first_part[p][i]][renumber[p][i]];
+  });
+  return joined;
+}
+
+/// Interns the blends group by group in the positions' sorted order; returns each blend's index in `normals`.
+std::vector<uint32_t> intern_blends(const Blends& blends, const Weld& weld, std::vector<Vec3>& normals,
+                                    ThreadPool& pool) {
+  std::vector<uint32_t> index(blends.normals.size());
+  const Ranges ranges(weld.sorted.size(), pool);
+  std::vector<NormalInterner> interners;
+  // Sized for one normal a group (a smooth mesh), so that the tables rarely grow.
+  for (unsigned part = 0; part < ranges.parts; ++part) interners.emplace_back(ranges.end(part) - ranges.begin(part));
+  ranges.run(pool, [&](size_t begin, size_t end, unsigned part, bool) {
+    // Groups in sorted order are scattered over the blends, and each look-up lands anywhere in the table: the
+    // group's start, its first blend and that blend's slot are fetched some groups ahead, so that their misses
+    // overlap instead of following one another.
+    const auto group = [&](size_t k) { return weld.sorted[std::min(k, end - 1)]; };
+    const auto has_blends = [&](uint32_t v) { return blends.start[v] < blends.start[v + 1]; };
+    for (size_t k = begin; k < end; ++k) {
+      __builtin_prefetch(&blends.start[group(k + 24)]);
+      if (const uint32_t ahead = group(k + 12); has_blends(ahead))
+        __builtin_prefetch(&blends.normals[blends.start[ahead]]);
+      if (const uint32_t ahead = group(k + 6); has_blends(ahead))
+        interners[part].prefetch(blends.normals[blends.start[ahead]]);
+      const uint32_t v = weld.sorted[k];
+      for (uint32_t b = blends.start[v]; b < blends.start[v + 1]; ++b)
+        index[b] = interners[part].intern(blends.normals[b]);
     }
-  }
-
-  std::vector<uint32_t> slots_;
-  std::vector<Key> keys_;
-  size_t mask_ = 0;
-};
-
-/// One group's distinct face normal, the angles of its corners there, and its blend within the crease (as an index
-/// into the range's interner).
-struct Distinct {
-  Vec3 normal;
-  float weight;
-  uint32_t index;
-};
+  });
+  std::vector<std::vector<uint32_t>> renumber;
+  normals = join_interners(interners, renumber, pool);
+  interners.clear();
+  // The first range's indices are already the joined ones (all its normals are new there, in order).
+  ranges.run(pool, [&](size_t begin, size_t end, unsigned part, bool) {
+    if (part == 0) return;
+    for (size_t k = begin; k < end; ++k) {
+      const uint32_t v = weld.sorted[k];
+      for (uint32_t b = blends.start[v]; b < blends.start[v + 1]; ++b) index[b] = renumber[part][index[b]];
+    }
+  });
+  return index;
+}
 
 }  // namespace
 
@@ -160,109 +340,31 @@ void compute_smooth_normals(Scene& scene, float crease_degrees, unsigned threads
   const auto report = [&](double done) {
     if (progress) progress(done);
   };
-  const size_t triangle_count = scene.triangles.size();
   const float crease = std::clamp(std::isfinite(crease_degrees) ? crease_degrees : 60.0f, 0.0f, 180.0f);
   // The small slack lets faces with the same normal (dot rounding to just under 1) join even at crease 0.
   const float cos_crease = std::cos(crease * kPi / 180.0f) - 1e-6f;
 
-  // Unit face normals; zero-area (or overflowing) triangles have none (zero) and take no part.
-  // And each corner's angle, weighing its face's normal: computed here in triangle order, where the positions they
-  // read are at hand, rather than corner by corner in the scattered order of the groups below.
-  std::vector<Vec3> face_normal(triangle_count, Vec3(0.0f));
-  std::vector<float> corner_weight(3 * triangle_count);
-  Ranges(triangle_count, pool).run(pool, [&](size_t begin, size_t end, unsigned, bool) {
-    for (size_t t = begin; t < end; ++t) {
-      const Vec3 raw = scene.geometric_normal_raw(static_cast<uint32_t>(t));
-      const float length = glm::length(raw);
-      if (length > 0.0f && std::isfinite(length)) face_normal[t] = raw / length;
-      const Triangle& tri = scene.triangles[t];
-      for (uint32_t c = 0; c < 3; ++c) {
-        const float angle = corner_angle(scene.positions[tri.v[c]], scene.positions[tri.v[(c + 1) % 3]],
-                                         scene.positions[tri.v[(c + 2) % 3]]);
-        corner_weight[3 * t + c] = std::isfinite(angle) ? angle : 0.0f;
-      }
-    }
-  });
-  const auto usable = [&](uint32_t t) { return face_normal[t] != Vec3(0.0f); };
-
+  const Faces faces = measure_faces(scene, pool);
   report(0.15);
-  // Corners grouped by welded position (compressed rows: corners of group g lie in [start[g], start[g+1])).
-  const std::vector<uint32_t> weld = weld_positions(scene.positions, pool);
-  const uint32_t group_count = weld.empty() ? 0u : *std::max_element(weld.begin(), weld.end()) + 1u;
-  std::vector<uint32_t> start(group_count + 1, 0);
-  for (uint32_t t = 0; t < triangle_count; ++t) {
-    if (!usable(t)) continue;
-    for (uint32_t c = 0; c < 3; ++c) ++start[weld[scene.triangles[t].v[c]] + 1];
-  }
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<uint32_t> corners(start.back());
-  {
-    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (uint32_t t = 0; t < triangle_count; ++t) {
-      if (!usable(t)) continue;
-      for (uint32_t c = 0; c < 3; ++c) corners[fill[weld[scene.triangles[t].v[c]]]++] = 3 * t + c;
-    }
-  }
-
+  const Weld weld = weld_positions(scene.positions, pool);
+  report(0.3);
+  CornerGroups groups = group_corners(scene, weld, faces);
   report(0.4);
-  std::vector<Triangle>& triangles = scene.triangles;
-  for (Triangle& tri : triangles) tri.n[0] = tri.n[1] = tri.n[2] = kNoNormal;
-
-  // Per range of groups, each corner gets its normal's index in the range's own interner; the ranges' interners are
-  // then joined in order and the corners renumbered.
-  const Ranges groups(group_count, pool);
-  std::vector<NormalInterner> interners(groups.parts);
-  groups.run(pool, [&](size_t group_begin, size_t group_end, unsigned part, bool calling_thread) {
-    NormalInterner& interner = interners[part];
-    // Per group, corners whose faces share one normal get one result: a flat fan around a vertex of a 5000-gon
-    // costs one sum, not 5000 x 5000.
-    std::vector<Distinct> distinct;
-    std::vector<uint32_t> order;
-    for (size_t g = group_begin; g < group_end; ++g) {
-      if (calling_thread && (g - group_begin) % 65536 == 65535)  // the calling thread's range stands for all
-        report(0.4 + 0.45 * static_cast<double>(g - group_begin) / static_cast<double>(group_end - group_begin));
-      const uint32_t begin = start[g];
-      const uint32_t end = start[g + 1];
-      if (begin == end) continue;
-      order.assign(corners.begin() + begin, corners.begin() + end);
-      std::sort(order.begin(), order.end(),
-                [&](uint32_t a, uint32_t b) { return less_xyz(face_normal[a / 3], face_normal[b / 3]); });
-      distinct.clear();
-      for (uint32_t corner : order) {
-        const Vec3& n = face_normal[corner / 3];
-        if (distinct.empty() || less_xyz(distinct.back().normal, n)) distinct.push_back({n, 0.0f, 0u});
-        distinct.back().weight += corner_weight[corner];
-      }
-      for (Distinct& d : distinct) {
-        Vec3 sum(0.0f);
-        for (const Distinct& other : distinct)
-          if (glm::dot(d.normal, other.normal) >= cos_crease) sum += other.weight * other.normal;
-        const float length = glm::length(sum);
-        d.index = interner.intern((length > 1e-12f && std::isfinite(length)) ? sum / length : d.normal);
-      }
-      size_t k = 0;
-      for (uint32_t corner : order) {
-        const Vec3& n = face_normal[corner / 3];
-        while (less_xyz(distinct[k].normal, n)) ++k;
-        triangles[corner / 3].n[corner % 3] = distinct[k].index;
-      }
+  for (Triangle& tri : scene.triangles) tri.n[0] = tri.n[1] = tri.n[2] = kNoNormal;
+  Blends blends = blend_groups(scene, faces, groups, cos_crease, pool, [&](double done) { report(0.4 + 0.35 * done); });
+  free_array(groups.corners);
+  free_array(groups.start);
+  report(0.75);
+  const std::vector<uint32_t> blend_index = intern_blends(blends, weld, scene.normals, pool);
+  report(0.9);
+  // Each corner's place within its group becomes its blend's index.
+  Ranges(scene.triangles.size(), pool).run(pool, [&](size_t begin, size_t end, unsigned, bool) {
+    for (size_t t = begin; t < end; ++t) {
+      Triangle& tri = scene.triangles[t];
+      if (!faces.usable(static_cast<uint32_t>(t))) continue;
+      for (uint32_t c = 0; c < 3; ++c) tri.n[c] = blend_index[blends.start[weld.representative[tri.v[c]]] + tri.n[c]];
     }
   });
-  report(0.85);
-  // The first range's indices are already the file's; the others' are renumbered into it.
-  NormalInterner all = std::move(interners[0]);
-  std::vector<std::vector<uint32_t>> renumber(groups.parts);
-  for (unsigned part = 1; part < groups.parts; ++part)
-    for (const Vec3& n : interners[part].normals) renumber[part].push_back(all.intern(n));
-  interners.clear();
-  groups.run(pool, [&](size_t group_begin, size_t group_end, unsigned part, bool) {
-    if (part == 0) return;
-    for (uint32_t i = start[group_begin]; i < start[group_end]; ++i) {
-      uint32_t& index = triangles[corners[i] / 3].n[corners[i] % 3];
-      index = renumber[part][index];
-    }
-  });
-  scene.normals = std::move(all.normals);
   release_free_memory();
 }
 
