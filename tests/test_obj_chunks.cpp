@@ -117,6 +117,38 @@ TEST(ObjChunks, EveryStatementReadsTheSameInManyChunks) {
     for (uint32_t v : scene.triangles[t].v) EXPECT_GE(v, 5u);
 }
 
+TEST(ObjChunks, EveryIndexFormReadsAsWritten) {
+  // The plain forms take a fast path and the rest (signs, zero padding past 9 digits) the general one: both must
+  // read the same indices.
+  const std::string obj =
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\n"
+      "f 1 2 3\nf 1/3 2/2 3/1\nf 1/1/1 2/3/1 3/2/1\nf 3//1 2//1 1//1\n"
+      "f 001 +2 -1\nf 0000000001/0000000002 2/+3 3/-3\nf 1//+1 2//-1 3//0000000001\n";
+  for (const unsigned threads : {1u, 2u}) {
+    LoadOptions options;
+    options.threads = threads;
+    options.chunk_bytes = threads == 1 ? 0 : 16;
+    const Scene scene = load_obj_from_text(obj, "", "forms.obj", options).scene;
+    const uint32_t v[7][3] = {{0, 1, 2}, {0, 1, 2}, {0, 1, 2}, {2, 1, 0}, {0, 1, 2}, {0, 1, 2}, {0, 1, 2}};
+    const uint32_t t[7][3] = {{kNoTexcoord, kNoTexcoord, kNoTexcoord},
+                              {2, 1, 0},
+                              {0, 2, 1},
+                              {kNoTexcoord, kNoTexcoord, kNoTexcoord},
+                              {kNoTexcoord, kNoTexcoord, kNoTexcoord},
+                              {1, 2, 0},
+                              {kNoTexcoord, kNoTexcoord, kNoTexcoord}};
+    const bool normal[7] = {false, false, true, true, false, false, true};
+    for (int f = 0; f < 7; ++f) {
+      SCOPED_TRACE(f);
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(scene.triangles[f].v[c], v[f][c]);
+        EXPECT_EQ(scene.triangles[f].t[c], t[f][c]);
+        EXPECT_EQ(scene.triangles[f].n[c] != kNoNormal, normal[f]);
+      }
+    }
+  }
+}
+
 TEST(ObjChunks, LargeFilesReadTheSameInManyChunks) {
   expect_chunking_changes_nothing(strip_of_quads(3000), "", "strip.obj");
   // The default scene as a file (its materials, emitters and file normals).

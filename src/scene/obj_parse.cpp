@@ -211,6 +211,51 @@ void parse_vertex_reference(string_view token, const char* what, ChunkParser& p,
   }
 }
 
+/// The common reference: "i", "i/j", "i//k" or "i/j/k" with plain positive indices of at most 9 digits that are
+/// in range, read without the general path's splitting. Returns false, having changed nothing, for anything else,
+/// which parse_vertex_reference then reads (and refuses, naming what is wrong).
+bool parse_plain_reference(string_view token, ChunkParser& p, bool& has_normal, Corner* corner) {
+  uint32_t values[3] = {0, 0, 0};
+  bool present[3] = {false, false, false};
+  const char* c = token.data();
+  const char* const end = c + token.size();
+  for (size_t part = 0;; ++part) {
+    if (part == 3) return false;
+    const char* const digits = c;
+    uint32_t value = 0;
+    while (c != end && *c >= '0' && *c <= '9' && c - digits < 9) value = 10 * value + static_cast<uint32_t>(*c++ - '0');
+    if (c != digits) {
+      if (value == 0) return false;
+      values[part] = value;
+      present[part] = true;
+    } else if (!(part == 1 && c != end && *c == '/')) {
+      return false;  // only the texture slot of "i//k" may be empty
+    }
+    if (c == end) break;
+    if (*c != '/') return false;
+    if (++c == end) return false;
+  }
+  const ObjCounts* before = p.context.before;
+  const uint64_t local[3] = {p.local.vertices, p.local.texcoords, p.local.normals};
+  const uint64_t earlier[3] = {before ? before->vertices : 0, before ? before->texcoords : 0,
+                               before ? before->normals : 0};
+  for (size_t i = 0; i < 3; ++i)
+    if (present[i] && values[i] > local[i] + earlier[i] && (before || values[i] > kMaxElements)) return false;
+  for (size_t i = 0; i < 3; ++i) {
+    if (!present[i]) continue;
+    // Beyond the chunk's own, the chunks before must make up the rest (checked when they are joined).
+    if (!before && values[i] > local[i])
+      p.out.needed_before[i] = std::max<uint64_t>(p.out.needed_before[i], values[i] - local[i]);
+  }
+  has_normal = has_normal || present[2];
+  if (corner) {
+    uint32_t* fields[3] = {&corner->v, &corner->t, &corner->n};
+    for (size_t i = 0; i < 3; ++i)
+      if (present[i]) *fields[i] = values[i] - 1;
+  }
+  return true;
+}
+
 /// `f`, `l` or `p`: every reference in range and enough of them; a face also keeps its corners and triangles, and
 /// refuses to be more ear clipping than a load should take. Lines and points draw nothing.
 void parse_element(string_view keyword, string_view rest, ChunkParser& p) {
@@ -222,7 +267,8 @@ void parse_element(string_view keyword, string_view rest, ChunkParser& p) {
   bool has_normal = false;
   for (string_view token = next_token(rest); !token.empty(); token = next_token(rest)) {
     Corner corner;
-    parse_vertex_reference(token, what, p, has_normal, keep ? &corner : nullptr);
+    if (!parse_plain_reference(token, p, has_normal, keep ? &corner : nullptr))
+      parse_vertex_reference(token, what, p, has_normal, keep ? &corner : nullptr);
     if (keep) p.out.corners.push_back(corner);
     ++count;
   }
@@ -258,40 +304,44 @@ bool scene_fits(const ObjCounts& s, uint64_t text_bytes, const MemoryBudget& bud
 
 void parse_chunk(string_view text, const ParseContext& context, ObjChunk& out) {
   ChunkParser p{context, out, out.counts};
-  for_each_line(text, [&](size_t line, string_view raw) {
-    p.line = line;
-    check_text_bytes(raw, p);
-    string_view rest = trim(raw);
-    if (rest.empty() || rest.front() == '#') return;
-    const string_view keyword = next_token(rest);
+  const TextScan scan = scan_text(text);
+  for_each_line(
+      text,
+      [&](size_t line, string_view raw) {
+        p.line = line;
+        if (scan.binary) check_text_bytes(raw, p);
+        string_view rest = trim(raw);
+        if (rest.empty() || rest.front() == '#') return;
+        const string_view keyword = next_token(rest);
 
-    if (keyword == "v") {
-      parse_vertex(rest, p);
-    } else if (keyword == "f" || keyword == "l" || keyword == "p") {
-      parse_element(keyword, rest, p);
-    } else if (keyword == "vn") {
-      parse_normal(rest, p);
-    } else if (keyword == "vt") {
-      parse_texcoord(rest, p);
-    } else if (keyword == "usemtl") {
-      p.local.seen_usemtl = true;
-      const bool after_mtllib = p.local.seen_mtllib || (context.before && context.before->seen_mtllib);
-      if (context.keep) {
-        out.runs.push_back({out.counts.faces, static_cast<uint32_t>(out.usemtls.size())});
-        out.usemtls.push_back({std::string(next_token(rest)), p.reported_line(), after_mtllib});
-      }
-    } else if (keyword == "mtllib") {
-      const string_view names = trim(rest);
-      if (names.empty()) {
-        out.empty_mtllib_lines.push_back(p.reported_line());
-      } else {
-        p.local.seen_mtllib = true;
-        out.mtllibs.push_back({std::string(names), p.reported_line()});
-      }
-    } else if (!is_known_statement(keyword)) {
-      p.fail("unknown statement '" + printable(keyword) + "'");
-    }
-  });
+        if (keyword == "v") {
+          parse_vertex(rest, p);
+        } else if (keyword == "f" || keyword == "l" || keyword == "p") {
+          parse_element(keyword, rest, p);
+        } else if (keyword == "vn") {
+          parse_normal(rest, p);
+        } else if (keyword == "vt") {
+          parse_texcoord(rest, p);
+        } else if (keyword == "usemtl") {
+          p.local.seen_usemtl = true;
+          const bool after_mtllib = p.local.seen_mtllib || (context.before && context.before->seen_mtllib);
+          if (context.keep) {
+            out.runs.push_back({out.counts.faces, static_cast<uint32_t>(out.usemtls.size())});
+            out.usemtls.push_back({std::string(next_token(rest)), p.reported_line(), after_mtllib});
+          }
+        } else if (keyword == "mtllib") {
+          const string_view names = trim(rest);
+          if (names.empty()) {
+            out.empty_mtllib_lines.push_back(p.reported_line());
+          } else {
+            p.local.seen_mtllib = true;
+            out.mtllibs.push_back({std::string(names), p.reported_line()});
+          }
+        } else if (!is_known_statement(keyword)) {
+          p.fail("unknown statement '" + printable(keyword) + "'");
+        }
+      },
+      scan.carriage_return);
   out.counts.lines = p.line;
 }
 

@@ -19,6 +19,18 @@ string_view trim(string_view s) {
   return s;
 }
 
+TextScan scan_text(string_view text) {
+  // Per-byte flags or-ed together, no early exit: a loop the compiler vectorises.
+  unsigned char binary = 0;
+  unsigned char carriage_return = 0;
+  for (const char byte : text) {
+    const auto c = static_cast<unsigned char>(byte);
+    binary |= static_cast<unsigned char>(((c < 0x20) & (c != '\t') & (c != '\n') & (c != '\r')) | (c == 0x7f));
+    carriage_return |= static_cast<unsigned char>(c == '\r');
+  }
+  return {binary != 0, carriage_return != 0};
+}
+
 string_view next_token(string_view& rest) {
   size_t begin = 0;
   while (begin < rest.size() && is_blank(rest[begin])) ++begin;
