@@ -234,6 +234,7 @@ Blends blend_groups(Scene& scene, const Faces& faces, const CornerGroups& groups
   blends.start[vertex_count] = static_cast<uint32_t>(blends.normals.size());
   ranges.run(pool, [&](size_t vertex_begin, size_t vertex_end, unsigned part, bool) {
     std::copy(range_normals[part].begin(), range_normals[part].end(), blends.normals.begin() + range_base[part]);
+    free_array(range_normals[part]);
     for (size_t v = vertex_begin; v < vertex_end; ++v) blends.start[v] += range_base[part];
   });
   return blends;
@@ -344,7 +345,7 @@ void compute_smooth_normals(Scene& scene, float crease_degrees, unsigned threads
   // The small slack lets faces with the same normal (dot rounding to just under 1) join even at crease 0.
   const float cos_crease = std::cos(crease * kPi / 180.0f) - 1e-6f;
 
-  const Faces faces = measure_faces(scene, pool);
+  Faces faces = measure_faces(scene, pool);
   report(0.15);
   const Weld weld = weld_positions(scene.positions, pool);
   report(0.3);
@@ -352,8 +353,11 @@ void compute_smooth_normals(Scene& scene, float crease_degrees, unsigned threads
   report(0.4);
   for (Triangle& tri : scene.triangles) tri.n[0] = tri.n[1] = tri.n[2] = kNoNormal;
   Blends blends = blend_groups(scene, faces, groups, cos_crease, pool, [&](double done) { report(0.4 + 0.35 * done); });
+  // What the interning does not need goes before its tables are made (this pass can be a load's peak).
   free_array(groups.corners);
   free_array(groups.start);
+  free_array(faces.normal);
+  free_array(faces.corner_weight);
   report(0.75);
   const std::vector<uint32_t> blend_index = intern_blends(blends, weld, scene.normals, pool);
   report(0.9);
@@ -361,7 +365,7 @@ void compute_smooth_normals(Scene& scene, float crease_degrees, unsigned threads
   Ranges(scene.triangles.size(), pool).run(pool, [&](size_t begin, size_t end, unsigned, bool) {
     for (size_t t = begin; t < end; ++t) {
       Triangle& tri = scene.triangles[t];
-      if (!faces.usable(static_cast<uint32_t>(t))) continue;
+      if (tri.n[0] == kNoNormal) continue;  // a face without a normal takes no part
       for (uint32_t c = 0; c < 3; ++c) tri.n[c] = blend_index[blends.start[weld.representative[tri.v[c]]] + tri.n[c]];
     }
   });
