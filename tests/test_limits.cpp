@@ -111,6 +111,24 @@ TEST(SceneBudget, TooManyVerticesForTheBudgetIsRefusedAtTheLine) {
   }
 }
 
+TEST(SceneBudget, TooManyTrianglesForTheBudgetIsRefusedAtTheLine) {
+  const std::string obj = grid_obj(100);  // 10000 vertex lines, then quads: two triangles a line
+  LoadOptions options;
+  options.memory = MemoryBudget{scene_memory_bytes(obj.size(), 10000, 0, 0, 1001), "a test budget"};
+  for (const unsigned threads : {1u, 2u}) {
+    options.threads = threads;
+    try {
+      load_obj_from_text(obj, "", "grid.obj", options);
+      ADD_FAILURE() << "loaded a scene over its budget";
+    } catch (const SceneError& e) {
+      // The 501st quad brings 1002 triangles, one more than the budget holds.
+      const std::string message = e.what();
+      EXPECT_EQ(message.rfind("grid.obj:10501: scene too large: 10000 vertices and 1002 triangles by this line", 0), 0u)
+          << message;
+    }
+  }
+}
+
 TEST(SceneBudget, EmittersCountOnceTheMaterialsSayWhichTrianglesEmit) {
   // The same grid twice: lit by its own material (every triangle an emitter) and not.
   const std::string obj = "mtllib grid.mtl\nusemtl lamp\n" + grid_obj(60);  // 3600 vertices, 6962 triangles

@@ -64,6 +64,18 @@ struct ChunkParser {
   size_t line = 0;   ///< the chunk's own line number
   uint64_t unshared = 0;
   uint64_t shared_bytes = 0;  ///< what this chunk has added to context.memory_needed
+  uint64_t headroom = 0;      ///< elements of any kind that certainly still fit
+
+  /// How many more elements of any kind fit after `counts` whatever their kind: the budget's slack over the
+  /// costliest element, and the room left below the index limit.
+  uint64_t elements_that_fit(const ObjCounts& counts) const {
+    const uint64_t costliest = std::max({scene_memory_bytes(0, 1, 0, 0, 0), scene_memory_bytes(0, 0, 1, 0, 0),
+                                         scene_memory_bytes(0, 0, 0, 1, 0), scene_memory_bytes(0, 0, 0, 0, 1)});
+    const uint64_t needed =
+        scene_memory_bytes(context.text_bytes, counts.vertices, counts.normals, counts.texcoords, counts.triangles);
+    const uint64_t slack = (context.budget.bytes - needed) / std::max<uint64_t>(costliest, 1);
+    return std::min(slack, kMaxElements - std::max(counts.vertices, counts.triangles));
+  }
 
   /// The line as messages name it: the file's when the lines before the chunk are known.
   size_t reported_line() const { return context.before ? context.before->lines + line : line; }
@@ -76,10 +88,17 @@ struct ChunkParser {
     return counts;
   }
 
-  /// Refuses the line where the counts so far need more memory than the budget, or the shared total does.
-  void check_size() {
-    const ObjCounts counts = so_far();
-    check_scene_size(counts, context.text_bytes, context.label, reported_line(), context.budget);
+  /// Refuses the line where the counts so far need more memory than the budget, or the shared total does. `added`:
+  /// the elements the line added (a face's triangles). Lines within the headroom that the last full check left are
+  /// known to fit without one (the estimate is linear in the counts).
+  void check_size(uint64_t added) {
+    if (added <= headroom) {
+      headroom -= added;
+    } else {
+      const ObjCounts counts = so_far();
+      check_scene_size(counts, context.text_bytes, context.label, reported_line(), context.budget);
+      headroom = elements_that_fit(counts);
+    }
     if (context.memory_needed && ++unshared == kElementsPerSharedCheck) {
       unshared = 0;
       // Every chunk's elements together, as the file's would count: the estimate is linear in the counts.
@@ -121,7 +140,7 @@ void parse_vertex(string_view rest, ChunkParser& p) {
       p.fail("unexpected '" + printable(token) + "' after vertex coordinates");
   }
   ++p.local.vertices;
-  p.check_size();
+  p.check_size(1);
   if (p.context.keep) p.out.positions.emplace_back(xyz[0], xyz[1], xyz[2]);
 }
 
@@ -131,7 +150,7 @@ void parse_normal(string_view rest, ChunkParser& p) {
   const string_view x = next_token(rest), y = next_token(rest), z = next_token(rest);
   if (x.empty() || y.empty() || z.empty()) p.fail("normal needs three components");
   ++p.local.normals;
-  p.check_size();
+  p.check_size(1);
   if (p.context.keep) p.out.normals.emplace_back(lenient_float(x), lenient_float(y), lenient_float(z));
 }
 
@@ -140,7 +159,7 @@ void parse_normal(string_view rest, ChunkParser& p) {
 void parse_texcoord(string_view rest, ChunkParser& p) {
   if (trim(rest).empty()) p.fail("texture coordinate needs a value");
   ++p.local.texcoords;
-  p.check_size();
+  p.check_size(1);
   if (p.context.keep) {
     const string_view u = next_token(rest), v = next_token(rest);
     p.out.texcoords.emplace_back(lenient_float(u), lenient_float(v));
@@ -288,7 +307,7 @@ void parse_element(string_view keyword, string_view rest, ChunkParser& p) {
   p.local.triangles += count - 2;
   if (!p.local.seen_usemtl) p.out.triangles_before_usemtl += count - 2;
   p.out.references_normals = p.out.references_normals || has_normal;
-  p.check_size();
+  p.check_size(count - 2);
   if (p.context.keep) {
     p.out.face_sizes.push_back(static_cast<uint8_t>(std::min<size_t>(count, 255)));
     if (count >= 255) p.out.large_face_sizes.push_back(static_cast<uint32_t>(count));
