@@ -173,8 +173,14 @@ Blends blend_groups(Scene& scene, const Faces& faces, const CornerGroups& groups
       Vec3 normal;
       float weight;
     };
+    // A corner with its face's normal and its weight at hand, so that sorting them reads no other array.
+    struct CornerAt {
+      Vec3 normal;
+      float weight;
+      uint32_t corner;
+    };
     std::vector<Distinct> distinct;
-    std::vector<uint32_t> order;
+    std::vector<CornerAt> at;
     std::vector<uint32_t> slot;  // per distinct normal, its result's place within the group
     for (size_t v = vertex_begin; v < vertex_end; ++v) {
       if (calling_thread && (v - vertex_begin) % 65536 == 65535)  // the calling thread's range stands for all
@@ -184,14 +190,17 @@ Blends blend_groups(Scene& scene, const Faces& faces, const CornerGroups& groups
       const uint32_t begin = groups.start[v];
       const uint32_t end = groups.start[v + 1];
       if (begin == end) continue;
-      order.assign(groups.corners.begin() + begin, groups.corners.begin() + end);
-      std::sort(order.begin(), order.end(),
-                [&](uint32_t a, uint32_t b) { return less_xyz(faces.normal[a / 3], faces.normal[b / 3]); });
+      at.clear();
+      for (uint32_t i = begin; i < end; ++i) {
+        const uint32_t corner = groups.corners[i];
+        at.push_back({faces.normal[corner / 3], faces.corner_weight[corner], corner});
+      }
+      std::sort(at.begin(), at.end(),
+                [](const CornerAt& a, const CornerAt& b) { return less_xyz(a.normal, b.normal); });
       distinct.clear();
-      for (uint32_t corner : order) {
-        const Vec3& n = faces.normal[corner / 3];
-        if (distinct.empty() || less_xyz(distinct.back().normal, n)) distinct.push_back({n, 0.0f});
-        distinct.back().weight += faces.corner_weight[corner];
+      for (const CornerAt& a : at) {
+        if (distinct.empty() || less_xyz(distinct.back().normal, a.normal)) distinct.push_back({a.normal, 0.0f});
+        distinct.back().weight += a.weight;
       }
       // Each distinct normal blends those within the crease, always summed in the same order: where that is all
       // of them (a smooth vertex), its blend is the group's whole sum, kept once.
@@ -199,12 +208,20 @@ Blends blend_groups(Scene& scene, const Faces& faces, const CornerGroups& groups
       for (const Distinct& other : distinct) whole += other.weight * other.normal;
       const float whole_length = glm::length(whole);
       const bool whole_usable = whole_length > 1e-12f && std::isfinite(whole_length);
+      const auto within = [&](const Distinct& a, const Distinct& b) {
+        return glm::dot(a.normal, b.normal) >= cos_crease;
+      };
+      // Every pair within the crease, each pair tested once (the dot product is symmetric, bit for bit).
+      bool all_pairs_within = true;
+      for (size_t i = 0; i < distinct.size() && all_pairs_within; ++i)
+        for (size_t j = i; j < distinct.size() && all_pairs_within; ++j)
+          all_pairs_within = within(distinct[i], distinct[j]);
       uint32_t whole_slot = ~0u;
       slot.clear();
       for (const Distinct& d : distinct) {
-        const bool all_within = std::all_of(distinct.begin(), distinct.end(), [&](const Distinct& other) {
-          return glm::dot(d.normal, other.normal) >= cos_crease;
-        });
+        const bool all_within =
+            all_pairs_within ||
+            std::all_of(distinct.begin(), distinct.end(), [&](const Distinct& other) { return within(d, other); });
         if (all_within && whole_usable) {
           if (whole_slot == ~0u) {
             whole_slot = static_cast<uint32_t>(results.size()) - first_result;
@@ -215,15 +232,15 @@ Blends blend_groups(Scene& scene, const Faces& faces, const CornerGroups& groups
         }
         Vec3 sum(0.0f);
         for (const Distinct& other : distinct)
-          if (glm::dot(d.normal, other.normal) >= cos_crease) sum += other.weight * other.normal;
+          if (within(d, other)) sum += other.weight * other.normal;
         const float length = glm::length(sum);
         slot.push_back(static_cast<uint32_t>(results.size()) - first_result);
         results.push_back((length > 1e-12f && std::isfinite(length)) ? sum / length : d.normal);
       }
       size_t k = 0;
-      for (uint32_t corner : order) {
-        while (less_xyz(distinct[k].normal, faces.normal[corner / 3])) ++k;
-        scene.triangles[corner / 3].n[corner % 3] = slot[k];
+      for (const CornerAt& a : at) {
+        while (less_xyz(distinct[k].normal, a.normal)) ++k;
+        scene.triangles[a.corner / 3].n[a.corner % 3] = slot[k];
       }
     }
   });
