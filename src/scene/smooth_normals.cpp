@@ -11,6 +11,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "core/huge_pages.h"
 #include "core/memory_budget.h"
 #include "core/thread_pool.h"
 #include "scene/normal_interner.h"
@@ -48,9 +49,9 @@ struct Ranges {
 /// smooth like indexed meshes.
 struct Weld {
   /// Per position, the smallest index of a position equal to it (a group's name, in the file's vertex order).
-  std::vector<uint32_t> representative;
+  HugePageVector<uint32_t> representative;
   /// One representative per distinct finite position, in the positions' sorted order (x, then y, then z).
-  std::vector<uint32_t> sorted;
+  HugePageVector<uint32_t> sorted;
 };
 
 Weld weld_positions(const std::vector<Vec3>& positions, ThreadPool& pool) {
@@ -61,7 +62,7 @@ Weld weld_positions(const std::vector<Vec3>& positions, ThreadPool& pool) {
     Vec3 position;
     uint32_t index;
   };
-  std::vector<Keyed> order;
+  HugePageVector<Keyed> order;
   order.reserve(positions.size());
   for (uint32_t i = 0; i < positions.size(); ++i) {
     weld.representative[i] = i;
@@ -99,14 +100,14 @@ float corner_angle(const Vec3& at, const Vec3& a, const Vec3& b) {
 /// Unit face normals (zero for zero-area or overflowing triangles, which take no part) and each corner's angle,
 /// which weighs its face's normal.
 struct Faces {
-  std::vector<Vec3> normal;
-  std::vector<float> corner_weight;
+  HugePageVector<Vec3> normal;
+  HugePageVector<float> corner_weight;
   bool usable(uint32_t t) const { return normal[t] != Vec3(0.0f); }
 };
 
 Faces measure_faces(const Scene& scene, ThreadPool& pool) {
   const size_t triangle_count = scene.triangles.size();
-  Faces faces{std::vector<Vec3>(triangle_count, Vec3(0.0f)), std::vector<float>(3 * triangle_count)};
+  Faces faces{HugePageVector<Vec3>(triangle_count, Vec3(0.0f)), HugePageVector<float>(3 * triangle_count)};
   Ranges(triangle_count, pool).run(pool, [&](size_t begin, size_t end, unsigned, bool) {
     for (size_t t = begin; t < end; ++t) {
       const Vec3 raw = scene.geometric_normal_raw(static_cast<uint32_t>(t));
@@ -126,8 +127,8 @@ Faces measure_faces(const Scene& scene, ThreadPool& pool) {
 /// Compressed rows: the corners (3 t + c) of usable faces at the positions welded to representative v lie in
 /// corners[start[v], start[v + 1]), in triangle order.
 struct CornerGroups {
-  std::vector<uint32_t> start;
-  std::vector<uint32_t> corners;
+  HugePageVector<uint32_t> start;
+  HugePageVector<uint32_t> corners;
 };
 
 CornerGroups group_corners(const Scene& scene, const Weld& weld, const Faces& faces) {
@@ -140,7 +141,7 @@ CornerGroups group_corners(const Scene& scene, const Weld& weld, const Faces& fa
   }
   std::partial_sum(groups.start.begin(), groups.start.end(), groups.start.begin());
   groups.corners.resize(groups.start.back());
-  std::vector<uint32_t> fill(groups.start.begin(), groups.start.end() - 1);
+  HugePageVector<uint32_t> fill(groups.start.begin(), groups.start.end() - 1);
   for (uint32_t t = 0; t < triangle_count; ++t) {
     if (!faces.usable(t)) continue;
     for (uint32_t c = 0; c < 3; ++c) groups.corners[fill[weld.representative[scene.triangles[t].v[c]]]++] = 3 * t + c;
@@ -151,8 +152,8 @@ CornerGroups group_corners(const Scene& scene, const Weld& weld, const Faces& fa
 /// Every group's results: a blended normal per distinct face normal at the position, in the face normals' sorted
 /// order, those that blend all of them (the same sum) kept once; group v's lie in normals[start[v], start[v + 1]).
 struct Blends {
-  std::vector<Vec3> normals;
-  std::vector<uint32_t> start;
+  HugePageVector<Vec3> normals;
+  HugePageVector<uint32_t> start;
 };
 
 /// Blends each group's distinct face normals within the crease, group by group in vertex order, and writes into
@@ -162,11 +163,11 @@ Blends blend_groups(Scene& scene, const Faces& faces, const CornerGroups& groups
   const size_t vertex_count = groups.start.size() - 1;
   const Ranges ranges(vertex_count, pool);
   // Each range's results first go to its own array, placed after the earlier ranges' once all are done.
-  std::vector<std::vector<Vec3>> range_normals(ranges.parts);
+  std::vector<HugePageVector<Vec3>> range_normals(ranges.parts);
   Blends blends;
   blends.start.assign(vertex_count + 1, 0);
   ranges.run(pool, [&](size_t vertex_begin, size_t vertex_end, unsigned part, bool calling_thread) {
-    std::vector<Vec3>& results = range_normals[part];
+    HugePageVector<Vec3>& results = range_normals[part];
     // Per group, corners whose faces share one normal get one result: a flat fan around a vertex of a 5000-gon
     // costs one sum, not 5000 x 5000.
     struct Distinct {
@@ -311,9 +312,9 @@ std::vector<Vec3> join_interners(const std::vector<NormalInterner>& parts, std::
 }
 
 /// Interns the blends group by group in the positions' sorted order; returns each blend's index in `normals`.
-std::vector<uint32_t> intern_blends(const Blends& blends, const Weld& weld, std::vector<Vec3>& normals,
-                                    ThreadPool& pool) {
-  std::vector<uint32_t> index(blends.normals.size());
+HugePageVector<uint32_t> intern_blends(const Blends& blends, const Weld& weld, std::vector<Vec3>& normals,
+                                       ThreadPool& pool) {
+  HugePageVector<uint32_t> index(blends.normals.size());
   const Ranges ranges(weld.sorted.size(), pool);
   std::vector<NormalInterner> interners;
   // Sized for one normal a group (a smooth mesh), so that the tables rarely grow.
@@ -376,7 +377,7 @@ void compute_smooth_normals(Scene& scene, float crease_degrees, unsigned threads
   free_array(faces.normal);
   free_array(faces.corner_weight);
   report(0.75);
-  const std::vector<uint32_t> blend_index = intern_blends(blends, weld, scene.normals, pool);
+  const HugePageVector<uint32_t> blend_index = intern_blends(blends, weld, scene.normals, pool);
   report(0.9);
   // Each corner's place within its group becomes its blend's index.
   Ranges(scene.triangles.size(), pool).run(pool, [&](size_t begin, size_t end, unsigned, bool) {
