@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <stb_image_write.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -377,6 +378,61 @@ TEST(TextureLoading, TexturesCountInTheMemoryBudget) {
   bool said = false;
   for (const std::string& w : refused.warnings) said |= w.find("left for textures") != std::string::npos;
   EXPECT_TRUE(said);
+}
+
+TEST(TextureLoading, ManyTexturesOnManyThreadsFitTheBudgetAsOneThreadWouldRead) {
+  // Ten quads, each with its own 4 x 4 colour map (64 bytes of texels). The fourth map's header reads but its image
+  // does not decode: the budget (five maps and 128 bytes more) must then let the seventh map in, exactly as reading
+  // the files one after the other does, whatever the threads and however the files are shared out among them.
+  const std::string dir = test::make_temp_dir("textures-many");
+  std::string obj = "mtllib many.mtl\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n";
+  std::string mtl;
+  write_rgba_png(dir + "/whole.png");
+  const std::string whole = test::read_file(dir + "/whole.png");
+  ASSERT_LT(whole.size(), 128u) << "the budget below assumes small files";
+  for (int i = 0; i < 10; ++i) {
+    const std::string file = "map" + std::to_string(i) + ".png";
+    write_text(dir + "/" + file, i == 3 ? whole.substr(0, 40) : whole);  // 40 bytes: the header and no image
+    mtl += "newmtl m" + std::to_string(i) + "\nKd 1 1 1\nmap_Kd " + file + "\n";
+    const float x = static_cast<float>(3 * i);
+    obj += "v " + std::to_string(x) + " 0 0\nv " + std::to_string(x + 1) + " 0 0\nv " + std::to_string(x + 1) +
+           " 1 0\nv " + std::to_string(x) + " 1 0\nusemtl m" + std::to_string(i) + "\nf -4/1 -3/2 -2/3 -1/4\n";
+  }
+  write_text(dir + "/many.obj", obj);
+  write_text(dir + "/many.mtl", mtl);
+  LoadOptions options;
+  options.light_rig = false;
+  options.memory = MemoryBudget{scene_memory_bytes(obj.size(), 40, 0, 4, 20) + 5 * 64 + 128, "a test's budget"};
+
+  std::vector<std::string> one_thread_warnings;
+  for (const unsigned threads : {1u, 2u, 3u, 8u}) {
+    SCOPED_TRACE(threads);
+    options.threads = threads;
+    const LoadedScene loaded = load_obj(dir + "/many.obj", options);
+    const Scene& scene = loaded.scene;
+    ASSERT_EQ(scene.textures.size(), 6u);
+    // Maps 0, 1, 2, 4, 5 and 6 are read, in that order; 3 does not decode; 7, 8 and 9 find no room left.
+    const int expected[10] = {0, 1, 2, -1, 3, 4, 5, -1, -1, -1};
+    for (int i = 0; i < 10; ++i) {
+      const auto material = std::find_if(scene.materials.begin(), scene.materials.end(),
+                                         [&](const Material& m) { return m.name == "m" + std::to_string(i); });
+      ASSERT_NE(material, scene.materials.end());
+      EXPECT_EQ(material->diffuse_texture, expected[i]) << "map " << i;
+      if (expected[i] >= 0) {
+        EXPECT_EQ(scene.textures[static_cast<size_t>(expected[i])].name, "map" + std::to_string(i) + ".png");
+      }
+    }
+    std::vector<std::string> texture_warnings;
+    for (const std::string& w : loaded.warnings)
+      if (w.find("map_Kd") != std::string::npos) texture_warnings.push_back(w);
+    ASSERT_EQ(texture_warnings.size(), 4u);
+    EXPECT_NE(texture_warnings[0].find("'map3.png': could not be decoded"), std::string::npos) << texture_warnings[0];
+    EXPECT_NE(texture_warnings[1].find("'map7.png': a "), std::string::npos) << texture_warnings[1];
+    EXPECT_NE(texture_warnings[1].find("more than the 64 bytes left for textures"), std::string::npos)
+        << texture_warnings[1];
+    if (threads == 1) one_thread_warnings = texture_warnings;
+    EXPECT_EQ(texture_warnings, one_thread_warnings);
+  }
 }
 
 }  // namespace

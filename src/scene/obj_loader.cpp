@@ -191,7 +191,8 @@ LoadedScene load_obj(const std::string& path, const LoadOptions& options) {
       directories.push_back(mtl_directory.string());
   }
   const uint64_t texture_budget = budget.bytes > scene_bytes ? budget.bytes - scene_bytes : 0;
-  obj::load_scene_textures(loaded.scene, directories, texture_budget, path, loaded.warnings, files);
+  obj::load_scene_textures(loaded.scene, directories, texture_budget, path, loaded.warnings, files, options.threads,
+                           [&clock](double done) { clock.report(done); });
   clock.stop();
   loaded.files = std::move(files);
   loaded.stage_times = clock.times();

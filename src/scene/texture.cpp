@@ -81,31 +81,52 @@ float sample_coverage(const Texture& texture, Vec2 uv) {
   return sum * (1.0f / 255.0f);
 }
 
-std::string decode_texture(const std::string& bytes, uint64_t byte_limit, Texture& out) {
+std::string probe_texture(const std::string& bytes, int& width, int& height) {
   if (bytes.size() > static_cast<size_t>(std::numeric_limits<int>::max())) return "too large a file";
-  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
-  const int length = static_cast<int>(bytes.size());
-  int width = 0, height = 0, channels = 0;
-  // The header first: a hostile file claiming a huge image is refused before anything is allocated.
-  if (!stbi_info_from_memory(data, length, &width, &height, &channels))
+  int channels = 0;
+  // The header only: a hostile file claiming a huge image is refused before anything is allocated.
+  if (!stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()), &width,
+                             &height, &channels))
     return std::string("not a readable image (") + stbi_failure_reason() + ")";
-  const uint64_t texel_bytes = 4 * static_cast<uint64_t>(width) * static_cast<uint64_t>(height);
-  if (width <= 0 || height <= 0 || texel_bytes > byte_limit)
-    return "a " + std::to_string(width) + "x" + std::to_string(height) + " image needs " + format_bytes(texel_bytes) +
-           ", more than the " + format_bytes(byte_limit) + " left for textures";
+  return {};
+}
+
+uint64_t texel_bytes(int width, int height) {
+  return 4 * static_cast<uint64_t>(std::max(width, 0)) * static_cast<uint64_t>(std::max(height, 0));
+}
+
+std::string check_texture_size(int width, int height, uint64_t byte_limit) {
+  if (width <= 0 || height <= 0 || texel_bytes(width, height) > byte_limit)
+    return "a " + std::to_string(width) + "x" + std::to_string(height) + " image needs " +
+           format_bytes(texel_bytes(width, height)) + ", more than the " + format_bytes(byte_limit) +
+           " left for textures";
+  return {};
+}
+
+std::string decode_probed_texture(const std::string& bytes, int width, int height, Texture& out) {
   int decoded_width = 0, decoded_height = 0, decoded_channels = 0;
-  stbi_uc* pixels = stbi_load_from_memory(data, length, &decoded_width, &decoded_height, &decoded_channels, 4);
+  stbi_uc* pixels =
+      stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()),
+                            &decoded_width, &decoded_height, &decoded_channels, 4);
   if (!pixels) return std::string("could not be decoded (") + stbi_failure_reason() + ")";
   const std::unique_ptr<stbi_uc, void (*)(void*)> owner(pixels, stbi_image_free);
   if (decoded_width != width || decoded_height != height) return "decoded to another size than its header says";
   out.width = width;
   out.height = height;
   out.has_alpha = decoded_channels == 2 || decoded_channels == 4;
-  out.rgba.assign(pixels, pixels + texel_bytes);
+  out.rgba.assign(pixels, pixels + texel_bytes(width, height));
   return {};
 }
 
-std::string load_texture(const std::string& path, uint64_t byte_limit, Texture& out) {
+std::string decode_texture(const std::string& bytes, uint64_t byte_limit, Texture& out) {
+  int width = 0, height = 0;
+  std::string error = probe_texture(bytes, width, height);
+  if (error.empty()) error = check_texture_size(width, height, byte_limit);
+  if (error.empty()) error = decode_probed_texture(bytes, width, height, out);
+  return error;
+}
+
+std::string read_texture_file(const std::string& path, uint64_t byte_limit, std::string& bytes) {
   std::ifstream file(path, std::ios::binary | std::ios::ate);
   if (!file) return "cannot be opened";
   const std::streamoff size = file.tellg();
@@ -113,10 +134,17 @@ std::string load_texture(const std::string& path, uint64_t byte_limit, Texture& 
   if (size < 0 || static_cast<uint64_t>(size) > byte_limit)
     return "a " + format_bytes(static_cast<uint64_t>(std::max<std::streamoff>(size, 0))) + " file, more than the " +
            format_bytes(byte_limit) + " left for textures";
-  std::string bytes(static_cast<size_t>(size), '\0');
+  bytes.assign(static_cast<size_t>(size), '\0');
   file.seekg(0);
   if (!file.read(bytes.data(), size)) return "cannot be read";
-  return decode_texture(bytes, byte_limit, out);
+  return {};
+}
+
+std::string load_texture(const std::string& path, uint64_t byte_limit, Texture& out) {
+  std::string bytes;
+  std::string error = read_texture_file(path, byte_limit, bytes);
+  if (error.empty()) error = decode_texture(bytes, byte_limit, out);
+  return error;
 }
 
 }  // namespace lueur

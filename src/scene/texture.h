@@ -32,10 +32,24 @@ float sample_coverage(const Texture& texture, Vec2 uv);
 
 /// Decodes the bytes of a PNG or JPEG (anything stb_image reads) into `out`, refusing images whose texels would take
 /// more than `byte_limit` bytes before decoding them. Returns an empty string on success, otherwise why it failed.
+/// It is probe_texture, check_texture_size and decode_probed_texture in turn (each returns why it failed, or "").
 std::string decode_texture(const std::string& bytes, uint64_t byte_limit, Texture& out);
 
+/// The image's size from its header alone.
+std::string probe_texture(const std::string& bytes, int& width, int& height);
+/// Refuses an image of no texels or whose texels need more than `byte_limit` bytes.
+std::string check_texture_size(int width, int height, uint64_t byte_limit);
+/// The bytes a decoded image of this size takes (Texture::bytes()).
+uint64_t texel_bytes(int width, int height);
+/// Decodes an image whose header probe_texture read, and which check_texture_size let through. Safe to call on
+/// several threads at once.
+std::string decode_probed_texture(const std::string& bytes, int width, int height, Texture& out);
+
 /// Reads the file at `path` and decodes it (decode_texture). Returns an empty string on success, otherwise why it
-/// failed, in one line that the caller prefixes with the file's name.
+/// failed, in one line that the caller prefixes with the file's name. It is read_texture_file, then decode_texture.
 std::string load_texture(const std::string& path, uint64_t byte_limit, Texture& out);
+
+/// Reads the file at `path` into `bytes`, refusing a file larger than `byte_limit` unread.
+std::string read_texture_file(const std::string& path, uint64_t byte_limit, std::string& bytes);
 
 }  // namespace lueur
