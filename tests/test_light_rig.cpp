@@ -6,11 +6,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <random>
 
-#include "obj_test_support.h"
 #include "integrator/camera_light.h"
 #include "integrator/direct_light.h"
 #include "integrator/renderer.h"
+#include "obj_test_support.h"
 #include "scene/light_rig.h"
 #include "scene/obj_loader.h"
 #include "test_support.h"
@@ -180,6 +182,92 @@ TEST(LightRig, ClosedRoomIsLitFromInsideAsDesigned) {
     const Vec3 l1 = estimate_direct_light(*traced, *sp, options, sampler, 0, rays);
     EXPECT_NEAR(l1.r, 0.5 * e / kPi, 0.01 * 0.5 * e / kPi) << kLightStrategyNames[static_cast<size_t>(strategy)];
   }
+}
+
+/// Two triangles over the four positions from `base` on.
+void add_quad_indices(Scene& scene, uint32_t base) {
+  Triangle a, b;
+  a.v[0] = base, a.v[1] = base + 1, a.v[2] = base + 2;
+  b.v[0] = base, b.v[1] = base + 2, b.v[2] = base + 3;
+  scene.triangles.push_back(a);
+  scene.triangles.push_back(b);
+}
+
+/// The nearest hit over every triangle of the model (the rig excluded), in double: the oracle of the culled cast.
+float nearest_by_loop(const Scene& scene, const Vec3& origin, const Vec3& dir, bool& front) {
+  double best = std::numeric_limits<double>::infinity();
+  const glm::dvec3 o(origin), d(dir);
+  for (size_t i = 0; i < std::min<size_t>(scene.triangles.size(), scene.rig_begin); ++i) {
+    const Triangle& tri = scene.triangles[i];
+    const glm::dvec3 a(scene.positions[tri.v[0]]), e1 = glm::dvec3(scene.positions[tri.v[1]]) - a,
+                                                   e2 = glm::dvec3(scene.positions[tri.v[2]]) - a;
+    const glm::dvec3 p = glm::cross(d, e2);
+    const double det = glm::dot(e1, p);
+    if (!(std::abs(det) > 1e-300)) continue;
+    const double inv = 1.0 / det;
+    const glm::dvec3 sv = o - a;
+    const double u = glm::dot(sv, p) * inv;
+    if (u < 0.0 || u > 1.0) continue;
+    const glm::dvec3 q = glm::cross(sv, e1);
+    const double v = glm::dot(d, q) * inv;
+    if (v < 0.0 || u + v > 1.0) continue;
+    const double t = glm::dot(e2, q) * inv;
+    if (t > 0.0 && t < best) {
+      best = t;
+      front = glm::dot(glm::cross(e1, e2), d) < 0.0;
+    }
+  }
+  return static_cast<float>(best);
+}
+
+TEST(LightRig, TheModelRayCastFindsWhatALoopOverEveryTriangleFinds) {
+  // A closed box of axis-aligned quads (rays along its faces and from its corners graze the runs' boxes) and
+  // thousands of scattered triangles, probed by random rays and by axis-aligned ones.
+  Scene scene = load_obj_from_text(closed_room_obj(), "", "room.obj").scene;
+  scene.triangles.resize(std::min<size_t>(scene.triangles.size(), scene.rig_begin));
+  // And flat runs: a floor of 8 x 16 quads at y = 3, whose boxes have no thickness at all.
+  for (int z = 0; z < 16; ++z)
+    for (int x = 0; x < 8; ++x) {
+      const auto base = static_cast<uint32_t>(scene.positions.size());
+      for (const auto& [dx, dz] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}})
+        scene.positions.emplace_back(static_cast<float>(x + dx), 3.0f, static_cast<float>(z + dz));
+      add_quad_indices(scene, base);
+    }
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> coordinate(-2.0f, 12.0f), unit(-1.0f, 1.0f);
+  for (int i = 0; i < 3000; ++i) {
+    Triangle tri;
+    const Vec3 at(coordinate(rng), coordinate(rng), coordinate(rng));
+    for (uint32_t& v : tri.v) {
+      v = static_cast<uint32_t>(scene.positions.size());
+      scene.positions.push_back(at + 0.3f * Vec3(unit(rng), unit(rng), unit(rng)));
+    }
+    scene.triangles.push_back(tri);
+  }
+  scene.rig_begin = static_cast<uint32_t>(scene.triangles.size());
+  const RayCast cast = brute_force_ray_cast(scene);
+  const Box3 box = scene.bounds();
+  int hits = 0;
+  for (int i = 0; i < 3000; ++i) {
+    Vec3 origin(coordinate(rng), coordinate(rng), coordinate(rng)), dir(unit(rng), unit(rng), unit(rng));
+    if (i % 3 == 1) dir = Vec3(0.0f), dir[i % 9 / 3] = unit(rng) < 0 ? -1.0f : 1.0f;            // along an axis
+    if (i % 5 == 2) origin = scene.positions[static_cast<size_t>(i) % scene.positions.size()];  // on a corner
+    if (i % 7 == 3) origin.x = box.lo.x;                                                        // on the box's side
+    if (i % 11 == 4) origin = Vec3(coordinate(rng) * 0.6f, 3.0f, coordinate(rng));              // in the floor's plane
+    if (i % 13 == 5)
+      origin = Vec3(0.5f + static_cast<float>(i % 8), 6.0f, 0.5f + static_cast<float>(i % 16)),
+      dir = Vec3(0.0f, -1.0f, 0.0f);  // straight down onto the floor
+    if (glm::length(dir) == 0.0f) continue;
+    dir = glm::normalize(dir);
+    bool front = false, expected_front = false;
+    const float t = cast(origin, dir, front), expected = nearest_by_loop(scene, origin, dir, expected_front);
+    ASSERT_EQ(t, expected) << "ray " << i;
+    if (std::isfinite(expected)) {
+      EXPECT_EQ(front, expected_front) << "ray " << i;
+      ++hits;
+    }
+  }
+  EXPECT_GT(hits, 500);
 }
 
 TEST(LightRig, RoomsAreToldFromOpenScenesAndClosedSolids) {

@@ -17,7 +17,8 @@ namespace lueur {
 /// that surface was met on the side its winding faces.
 using RayCast = std::function<float(const Vec3& origin, const Vec3& dir, bool& front)>;
 
-/// A loop over every triangle of `scene` (its light rig excluded): for scenes not yet prepared for tracing.
+/// What a loop over every triangle of `scene` (its light rig excluded) finds, for scenes not yet prepared for tracing;
+/// runs of triangles whose box a ray misses are skipped. `scene` must outlive the function and keep its triangles.
 RayCast brute_force_ray_cast(const Scene& scene);
 
 /// A closed room: a point inside it from which nearly every direction meets a wall, and what that point sees above
