@@ -131,10 +131,10 @@ uint64_t add_emitters_to_budget(const Scene& scene, const std::string& label, ui
 
 uint64_t scene_memory_bytes(uint64_t text_bytes, uint64_t vertices, uint64_t normals, uint64_t texcoords,
                             uint64_t triangles) {
-  // Fitted to measured peaks with about 1.6x to spare: a 1000x1000 grid OBJ (68 MB, 1M vertices, 2M triangles,
-  // smooth normals computed) peaked at 489 MB resident and is budgeted 765 MB; a 62 MB triangle soup (2.1M
-  // vertices, 0.7M triangles) peaked at 279 MB and is budgeted 467 MB. The text is held more than once (the
-  // file, tinyobjloader's stream); triangles cost most: tinyobjloader's indices, the Scene, normals, the BVH.
+  // Fitted, with room to spare, to the peaks of the reader that came before Lueur's own (tinyobjloader, which held
+  // the text twice and its own index arrays); the present reader and lean BVH need far less (BENCHMARKS.md,
+  // "Loading big scenes"), so the budget errs on the safe side. A refit must keep --accel embree's own copy of the
+  // triangles in mind and re-check which of the hostile corpus's budget cases are refused.
   constexpr uint64_t kPerTextByte = 3, kPerVertex = 48, kPerNormal = 32, kPerTexcoord = 24, kPerTriangle = 256;
   const uint64_t parts[][2] = {{text_bytes, kPerTextByte},
                                {vertices, kPerVertex},
