@@ -25,7 +25,7 @@ TextScan scan_text(string_view text) {
   unsigned char carriage_return = 0;
   for (const char byte : text) {
     const auto c = static_cast<unsigned char>(byte);
-    binary |= static_cast<unsigned char>(((c < 0x20) & (c != '\t') & (c != '\n') & (c != '\r')) | (c == 0x7f));
+    binary |= static_cast<unsigned char>(is_binary_byte(c));
     carriage_return |= static_cast<unsigned char>(c == '\r');
   }
   return {binary != 0, carriage_return != 0};

@@ -18,7 +18,10 @@ namespace lueur::obj {
 inline bool is_blank(char c) { return c == ' ' || c == '\t'; }
 
 /// Bytes that never appear in a text OBJ/MTL: NUL, the C0 controls other than tab/CR/LF, and DEL.
-inline bool is_binary_byte(unsigned char c) { return (c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f; }
+/// Written with `&` and `|`, not `&&` and `||`, so that loops over many bytes vectorise (scan_text).
+inline bool is_binary_byte(unsigned char c) {
+  return ((c < 0x20) & (c != '\t') & (c != '\n') & (c != '\r')) | (c == 0x7f);
+}
 
 /// `s` without leading and trailing blanks.
 std::string_view trim(std::string_view s);
