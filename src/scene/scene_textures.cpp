@@ -9,8 +9,6 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <limits>
 #include <map>
 #include <optional>
 
@@ -47,10 +45,8 @@ struct Wanted {
   const char* statement;  ///< that statement: "map_Kd" or "map_d"
   std::string path;       ///< where it was found; empty: nowhere
   std::string error;      ///< why it cannot be read at all, before any budget
-  std::string bytes;      ///< the file, read
-  uint64_t file_bytes = 0;
-  bool opened = false;  ///< false: `error` says why
-  std::string read_error, probe_error;
+  TextureFile file;
+  std::string probe_error;
   int width = 0, height = 0;
   std::optional<std::string> decode_error;  ///< set once decoded (empty: success)
   Texture texture;
@@ -59,27 +55,15 @@ struct Wanted {
 /// Reads the file and its header (no budget yet: the file is read when it is no larger than `byte_limit`, the most
 /// any texture of the batch can be given).
 void read_and_probe(Wanted& wanted, uint64_t byte_limit) {
-  std::ifstream file(wanted.path, std::ios::binary | std::ios::ate);
-  wanted.opened = static_cast<bool>(file);
-  if (!wanted.opened) return;
-  const std::streamoff size = file.tellg();
-  wanted.file_bytes = size < 0 ? std::numeric_limits<uint64_t>::max() : static_cast<uint64_t>(size);
-  if (wanted.file_bytes > byte_limit) return;
-  file.close();
-  wanted.read_error = read_texture_file(wanted.path, byte_limit, wanted.bytes);
-  if (wanted.read_error.empty()) wanted.probe_error = probe_texture(wanted.bytes, wanted.width, wanted.height);
+  wanted.file = read_texture_file(wanted.path, byte_limit);
+  if (wanted.file.read) wanted.probe_error = probe_texture(wanted.file.bytes, wanted.width, wanted.height);
 }
 
-/// Why `wanted` cannot be given `left` bytes of texels, or "" (read_texture_file's and decode_texture's checks, in
-/// their order, from what read_and_probe found).
+/// Why `wanted` cannot be given `left` bytes of texels, or "" (the file's, then decode_texture's checks, in their
+/// order, from what read_and_probe found).
 std::string refusal(const Wanted& wanted, uint64_t left) {
   if (!wanted.error.empty()) return wanted.error;
-  if (!wanted.opened) return "cannot be opened";
-  if (wanted.file_bytes > left) {
-    const uint64_t shown = wanted.file_bytes == std::numeric_limits<uint64_t>::max() ? 0 : wanted.file_bytes;
-    return "a " + format_bytes(shown) + " file, more than the " + format_bytes(left) + " left for textures";
-  }
-  if (!wanted.read_error.empty()) return wanted.read_error;
+  if (std::string error = texture_file_refusal(wanted.file, left); !error.empty()) return error;
   if (!wanted.probe_error.empty()) return wanted.probe_error;
   return check_texture_size(wanted.width, wanted.height, left);
 }
@@ -147,14 +131,14 @@ void load_scene_textures(Scene& scene, const std::vector<std::string>& directori
     pool.parallel_for(static_cast<int>(last - first), [&](int i, int) {
       if (!planned[static_cast<size_t>(i)]) return;
       Wanted& w = wanted[first + static_cast<size_t>(i)];
-      w.decode_error = decode_probed_texture(w.bytes, w.width, w.height, w.texture);
+      w.decode_error = decode_probed_texture(w.file.bytes, w.width, w.height, w.texture);
     });
     // In order, with the real outcomes: the one-thread result.
     for (size_t i = first; i < last; ++i) {
       Wanted& w = wanted[i];
       std::string error = refusal(w, left);
       if (error.empty()) {
-        if (!w.decode_error) w.decode_error = decode_probed_texture(w.bytes, w.width, w.height, w.texture);
+        if (!w.decode_error) w.decode_error = decode_probed_texture(w.file.bytes, w.width, w.height, w.texture);
         error = *w.decode_error;
       }
       if (error.empty()) {
@@ -166,7 +150,7 @@ void load_scene_textures(Scene& scene, const std::vector<std::string>& directori
         warnings.push_back(label + ": " + w.statement + " '" + printable(w.name) + "': " + error +
                            (std::string(w.statement) == "map_Kd" ? ": using grey" : ": no cutout"));
       }
-      std::string().swap(w.bytes);
+      std::string().swap(w.file.bytes);
       w.texture = Texture{};
     }
     if (progress) progress(static_cast<double>(last) / static_cast<double>(wanted.size()));

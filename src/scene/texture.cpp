@@ -126,25 +126,28 @@ std::string decode_texture(const std::string& bytes, uint64_t byte_limit, Textur
   return error;
 }
 
-std::string read_texture_file(const std::string& path, uint64_t byte_limit, std::string& bytes) {
+TextureFile read_texture_file(const std::string& path, uint64_t byte_limit) {
+  TextureFile texture_file;
   std::ifstream file(path, std::ios::binary | std::ios::ate);
-  if (!file) return "cannot be opened";
+  texture_file.opened = static_cast<bool>(file);
+  if (!texture_file.opened) return texture_file;
   const std::streamoff size = file.tellg();
-  // Compressed images decode to more bytes than they store: a file larger than the budget is refused unread.
-  if (size < 0 || static_cast<uint64_t>(size) > byte_limit)
-    return "a " + format_bytes(static_cast<uint64_t>(std::max<std::streamoff>(size, 0))) + " file, more than the " +
-           format_bytes(byte_limit) + " left for textures";
-  bytes.assign(static_cast<size_t>(size), '\0');
+  texture_file.size = size < 0 ? std::numeric_limits<uint64_t>::max() : static_cast<uint64_t>(size);
+  if (texture_file.size > byte_limit) return texture_file;
+  texture_file.bytes.assign(static_cast<size_t>(size), '\0');
   file.seekg(0);
-  if (!file.read(bytes.data(), size)) return "cannot be read";
-  return {};
+  texture_file.read = static_cast<bool>(file.read(texture_file.bytes.data(), size));
+  return texture_file;
 }
 
-std::string load_texture(const std::string& path, uint64_t byte_limit, Texture& out) {
-  std::string bytes;
-  std::string error = read_texture_file(path, byte_limit, bytes);
-  if (error.empty()) error = decode_texture(bytes, byte_limit, out);
-  return error;
+std::string texture_file_refusal(const TextureFile& file, uint64_t byte_limit) {
+  if (!file.opened) return "cannot be opened";
+  // Compressed images decode to more bytes than they store: a file larger than the budget is refused unread.
+  if (file.size > byte_limit) {
+    const uint64_t shown = file.size == std::numeric_limits<uint64_t>::max() ? 0 : file.size;
+    return "a " + format_bytes(shown) + " file, more than the " + format_bytes(byte_limit) + " left for textures";
+  }
+  return file.read ? std::string() : std::string("cannot be read");
 }
 
 }  // namespace lueur

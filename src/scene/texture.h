@@ -45,11 +45,20 @@ uint64_t texel_bytes(int width, int height);
 /// several threads at once.
 std::string decode_probed_texture(const std::string& bytes, int width, int height, Texture& out);
 
-/// Reads the file at `path` and decodes it (decode_texture). Returns an empty string on success, otherwise why it
-/// failed, in one line that the caller prefixes with the file's name. It is read_texture_file, then decode_texture.
-std::string load_texture(const std::string& path, uint64_t byte_limit, Texture& out);
+/// A texture file as read_texture_file left it.
+struct TextureFile {
+  bool opened = false;
+  uint64_t size = 0;  ///< the file's size in bytes (the largest value where it could not be told)
+  bool read = false;  ///< `bytes` holds the whole file
+  std::string bytes;
+};
 
-/// Reads the file at `path` into `bytes`, refusing a file larger than `byte_limit` unread.
-std::string read_texture_file(const std::string& path, uint64_t byte_limit, std::string& bytes);
+/// Opens the file at `path` and reads it, unless it is larger than `byte_limit`.
+TextureFile read_texture_file(const std::string& path, uint64_t byte_limit);
+
+/// Why `file` cannot be a texture when `byte_limit` bytes are left for textures ("cannot be opened", "a 5.0 MiB file,
+/// more than the 1.0 MiB left for textures", "cannot be read"), in one line that the caller prefixes with the
+/// file's name; "" when its bytes are there to decode.
+std::string texture_file_refusal(const TextureFile& file, uint64_t byte_limit);
 
 }  // namespace lueur
