@@ -245,7 +245,7 @@ TEST(LightRig, TheModelRayCastFindsWhatALoopOverEveryTriangleFinds) {
     scene.triangles.push_back(tri);
   }
   scene.rig_begin = static_cast<uint32_t>(scene.triangles.size());
-  const RayCast cast = brute_force_ray_cast(scene);
+  const RayCast cast = model_ray_cast(scene);
   const Box3 box = scene.bounds();
   int hits = 0;
   for (int i = 0; i < 3000; ++i) {
@@ -280,7 +280,7 @@ TEST(LightRig, RoomsAreToldFromOpenScenesAndClosedSolids) {
   const auto probe = [](const Scene& s) {
     Scene model = s;
     model.rig_begin = std::min<uint32_t>(s.rig_begin, static_cast<uint32_t>(s.triangles.size()));
-    return find_enclosure(model.bounds(), brute_force_ray_cast(model));
+    return find_enclosure(model.bounds(), model_ray_cast(model));
   };
   const std::optional<Enclosure> inside = probe(room.scene);
   ASSERT_TRUE(inside);

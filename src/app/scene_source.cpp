@@ -81,7 +81,7 @@ OpenedScene open_scene(const std::string& path, const SceneOptions& options, flo
   }
   StageClock clock(progress);
   clock.start(LoadStage::kBvh);
-  opened.traced = prepare_scene(std::move(scene), options.accel, [&clock](double done) { clock.report(done); });
+  opened.traced = prepare_scene(std::move(scene), options.accel, clock.reporter());
   clock.stop();
   opened.stage_times.insert(opened.stage_times.end(), clock.times().begin(), clock.times().end());
   if (!path.empty()) {

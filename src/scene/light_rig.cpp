@@ -145,7 +145,7 @@ std::string add_ceiling_panel(Scene& scene, const Box3& bounds, const Enclosure&
 
 }  // namespace
 
-RayCast brute_force_ray_cast(const Scene& scene) {
+RayCast model_ray_cast(const Scene& scene) {
   // The model's triangles in runs of kRun, each run with a box around its corners, so that a ray tests only the
   // triangles of the runs whose box it crosses: a scene of millions of triangles without emitters is probed in
   // milliseconds rather than seconds. Runs in order and triangles in order within them, with a strict "nearer":

@@ -1,7 +1,8 @@
 // What a scene from the internet needs to be seen at first look: whether it is a closed room (a camera outside it
 // sees only its walls), the view from inside such a room, and the default light rig for a scene without emitters,
 // made of emissive triangles so that every pass and light strategy samples it like any other light.
-// Depends on core and scene only: rays are cast through a function, by brute force here or by a BVH above.
+// Depends on core and scene only: rays are cast through a function, over the model's triangles here (model_ray_cast) or
+// by a BVH above.
 #pragma once
 
 #include <functional>
@@ -19,7 +20,7 @@ using RayCast = std::function<float(const Vec3& origin, const Vec3& dir, bool& f
 
 /// What a loop over every triangle of `scene` (its light rig excluded) finds, for scenes not yet prepared for tracing;
 /// runs of triangles whose box a ray misses are skipped. `scene` must outlive the function and keep its triangles.
-RayCast brute_force_ray_cast(const Scene& scene);
+RayCast model_ray_cast(const Scene& scene);
 
 /// A closed room: a point inside it from which nearly every direction meets a wall, and what that point sees above
 /// and below (the rig's ceiling panel hangs there).

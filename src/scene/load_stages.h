@@ -49,6 +49,11 @@ class StageClock {
     times_.push_back({current_, std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count()});
     running_ = false;
   }
+  /// report() as a function to hand to a step that tells its share done; empty when nobody listens.
+  std::function<void(double done)> reporter() const {
+    if (!progress_) return {};
+    return [this](double done) { report(done); };
+  }
   const std::vector<StageTime>& times() const { return times_; }
   const LoadProgress& progress() const { return progress_; }
 

@@ -365,8 +365,7 @@ void assign_shading_normals(const ParsedObj& summary, const LoadOptions& options
                             const StageClock& clock) {
   if (summary.references_normals) return;
   if (options.smooth_normals) {
-    compute_smooth_normals(scene, options.crease_degrees, options.threads,
-                           [&clock](double done) { clock.report(done); });
+    compute_smooth_normals(scene, options.crease_degrees, options.threads, clock.reporter());
   } else {
     clear_normals(scene);
   }
@@ -381,7 +380,7 @@ void ensure_emitter(const std::string& label, const LoadOptions& options, Scene&
     warnings.push_back(label + ": no emitter, and the default light rig is off: nothing lights the scene");
     return;
   }
-  const std::optional<Enclosure> room = find_enclosure(scene.bounds(), brute_force_ray_cast(scene));
+  const std::optional<Enclosure> room = find_enclosure(scene.bounds(), model_ray_cast(scene));
   const std::string what = add_light_rig(scene, room, options.light_rig_scale);
   warnings.push_back(label + ": no emitter: added the default light rig, " + what);
   // Around 1e20 and beyond, float spacing swallows any light small enough for its area to stay finite.

@@ -100,7 +100,7 @@ obj::ReadSchedule schedule_of(const LoadOptions& options, const StageClock& cloc
   obj::ReadSchedule schedule;
   schedule.threads = options.threads;
   schedule.chunk_bytes = options.chunk_bytes;
-  if (options.progress) schedule.progress = [&clock](double done) { clock.report(done); };
+  schedule.progress = clock.reporter();
   return schedule;
 }
 
@@ -192,7 +192,7 @@ LoadedScene load_obj(const std::string& path, const LoadOptions& options) {
   }
   const uint64_t texture_budget = budget.bytes > scene_bytes ? budget.bytes - scene_bytes : 0;
   obj::load_scene_textures(loaded.scene, directories, texture_budget, path, loaded.warnings, files, options.threads,
-                           [&clock](double done) { clock.report(done); });
+                           clock.reporter());
   clock.stop();
   loaded.files = std::move(files);
   loaded.stage_times = clock.times();
