@@ -115,8 +115,8 @@ TEST(ResumeRefused, AStateThatDoesNotMatchTheOptionsIsRefusedWithOneLine) {
   const std::string older = dir + "/older.state";
   {
     std::string old_version = read_file(state);
-    ASSERT_EQ(old_version.rfind("LUEUR-STATE 3\n", 0), 0u);
-    old_version[12] = '2';
+    ASSERT_EQ(old_version.rfind("LUEUR-STATE 4\n", 0), 0u);
+    old_version[12] = '3';
     FILE* f = std::fopen(older.c_str(), "wb");
     std::fwrite(old_version.data(), 1, old_version.size(), f);
     std::fclose(f);

@@ -56,6 +56,8 @@ void write_gl_screenshot(const AppOptions& options, const Settings& described, c
     panel.stats.ln_lookups = figures.tally.ln_lookups;
     panel.stats.ln_reused = figures.tally.ln_reused;
     panel.stats.ln_cached = figures.tally.ln_cached;
+    panel.stats.ln_paths = figures.tally.ln_paths;
+    panel.stats.ln_ended = figures.tally.ln_ended;
     panel.stats.served = figures.tally.served;
     panel.stats.cache = figures.cache;
     panel.noise = estimate_film_noise(film, options.settings.render.enabled, options.settings.weights,
@@ -127,6 +129,8 @@ void FrameTally::add(const FrameTally& other) {
   ln_lookups += other.ln_lookups;
   ln_reused += other.ln_reused;
   ln_cached += other.ln_cached;
+  ln_paths += other.ln_paths;
+  ln_ended += other.ln_ended;
   served.add(other.served);
   dropped += other.dropped;
   l2_seconds += other.l2_seconds;
@@ -154,6 +158,8 @@ FrameResult render_frame_pair(const TracedScene& traced, const Camera& camera, c
   tally.ln_lookups += frame.ln_lookups;
   tally.ln_reused += frame.ln_reused;
   tally.ln_cached += frame.ln_cached;
+  tally.ln_paths += frame.ln_paths;
+  tally.ln_ended += frame.ln_ended;
   tally.served.add(frame.served_samples);
   tally.dropped += frame.dropped_samples;
   tally.l2_seconds += frame.l2_seconds;
@@ -384,6 +390,10 @@ void print_run_summary(const AppOptions& options, const Film& film, const Film* 
                  static_cast<double>(figures.tally.ln_lookups) * 1e-6, share(figures.tally.ln_reused),
                  share(figures.tally.ln_cached),
                  share(figures.tally.ln_lookups - figures.tally.ln_reused - figures.tally.ln_cached));
+    if (figures.tally.ln_ended > 0)
+      std::fprintf(stderr,
+                   "lueur: ln: %.1f%% of its paths took their further light from the L1 store and ended there\n",
+                   100.0 * static_cast<double>(figures.tally.ln_ended) / static_cast<double>(figures.tally.ln_paths));
   }
   if (right) {
     print_side("left (as set)", film, options.settings, figures.tally.left_seconds);

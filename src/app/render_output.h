@@ -21,7 +21,7 @@ namespace lueur {
 /// What frames cost and found, added up. Plain numbers only: lueur-mpi gathers it from every rank.
 struct FrameTally {
   uint64_t rays = 0, bounce_hits = 0, reused = 0, cached = 0, dropped = 0;
-  uint64_t ln_lookups = 0, ln_reused = 0, ln_cached = 0;
+  uint64_t ln_lookups = 0, ln_reused = 0, ln_cached = 0, ln_paths = 0, ln_ended = 0;
   ServedSamples served;
   double l2_seconds = 0.0;
   double left_seconds = 0.0, right_seconds = 0.0;  ///< an A/B split's tracing time per side

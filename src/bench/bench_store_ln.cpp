@@ -23,7 +23,7 @@ struct Racer {
   Accumulation accumulation;
   std::vector<Point> curve;
   double seconds = 0.0;
-  uint64_t lookups = 0, from_screen = 0, from_store = 0;
+  uint64_t lookups = 0, from_screen = 0, from_store = 0, paths = 0, ended = 0;
 
   explicit Racer(const RenderSettings& s) : settings(s) { accumulation.reset(s); }
 
@@ -36,6 +36,8 @@ struct Racer {
       lookups += r.ln_lookups;
       from_screen += r.ln_reused;
       from_store += r.ln_cached;
+      paths += r.ln_paths;
+      ended += r.ln_ended;
       if (reference)
         curve.push_back(
             {seconds, image_mse(layer_average(accumulation.film, Layer::kLn), *reference) - reference_noise});
@@ -109,14 +111,16 @@ Json run_store_ln(std::vector<BenchScene>& scenes, const StoreLnOptions& o, std:
                              {"reference_frames", reference_frames},
                              {"reference_noise", reference_noise},
                              {"ln_share_from_screen", share(r.from_screen, r.lookups)},
-                             {"ln_share_from_store", share(r.from_store, r.lookups)}});
+                             {"ln_share_from_store", share(r.from_store, r.lookups)},
+                             {"ln_paths_ended_by_store", share(r.ended, r.paths)}});
       std::fprintf(log,
                    "lueur-bench: store-ln %-16s %-13s %5llu frames in %5.1f s: ln MSE %.4g; off's (%.4g) reached %s; "
-                   "ln's vertices %.0f%% screen, %.0f%% store\n",
+                   "ln's vertices %.0f%% screen, %.0f%% store; paths ended by the store %.0f%%\n",
                    b.name.c_str(), mode.c_str(), static_cast<unsigned long long>(r.accumulation.film.frames), r.seconds,
                    r.curve.back().ln_mse, off_error,
                    reach ? (std::to_string(*reach).substr(0, 6) + " s").c_str() : "never",
-                   100.0 * share(r.from_screen, r.lookups), 100.0 * share(r.from_store, r.lookups));
+                   100.0 * share(r.from_screen, r.lookups), 100.0 * share(r.from_store, r.lookups),
+                   100.0 * share(r.ended, r.paths));
       std::fflush(log);
     }
   }

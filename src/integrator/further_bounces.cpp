@@ -101,6 +101,38 @@ VertexL1 l1_at_vertex(const TracedScene& traced, const RenderSettings& settings,
   return answer;
 }
 
+/// A path's feed of its further light to the cell at its first bounce hit.
+struct FurtherFeed {
+  bool feeds = false;
+  L1CacheKey key;
+  uint64_t hash = 0;
+  Vec3 arriving{0.0f};  ///< the light found past q, over the path's throughput at q times q's BRDF
+};
+
+/// At a path's first bounce hit q (constant BRDF, the store modes): true and `further` set where q's cell holds
+/// its further light (kFurtherMinSamples; the path ends there); otherwise false, and `feed` says whether the path,
+/// going on, feeds the cell. The cell is the one L2 looked up at q where the path starts along L2's bounce (`first`).
+bool further_at_first_bounce(const L1CacheAccess& store, const SurfacePoint& q, const SharedBounce* first,
+                             FurtherFeed& feed, Vec3& further) {
+  if (first && first->keyed) {
+    feed.key = first->key;
+    feed.hash = first->hash;
+  } else {
+    const float u1 = store.jitter->next_float(), u2 = store.jitter->next_float();
+    feed.key = jittered_key(*store.grid, q.position, q.geometric_normal, u1, u2);
+    feed.hash = hash_of(feed.key);
+  }
+  feed.key.light = kFurtherLight;  // the hash stays the L1 cell's: the slot L2 just read
+  const L1CacheCell* cell = nullptr;
+  const StoreUse use = further_use_of_store(store, feed.key, feed.hash, cell);
+  if (use == StoreUse::kRead) {
+    further = cell->sum / static_cast<float>(cell->samples);
+    return true;
+  }
+  feed.feeds = use == StoreUse::kFeed;
+  return false;
+}
+
 /// One path from p: its light beyond L1 and L2. `first`, when given, is its first segment, already traced.
 Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSettings& settings, int bounces_before,
                 PixelSampler& sampler, uint64_t& rays, const SharedBounce* first, const FurtherBounceReuse& reuse,
@@ -112,10 +144,30 @@ Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSe
   bool after_specular = false;   // v was reached along a specular direction
   float bounce_pdf = 0.0f;       // otherwise, the solid-angle pdf of the direction that reached it
   bool whole_l1 = false;         // the vertex before v took its L1 whole (from the screen): v's emission is in it
+  // Where the path feeds the store's cell at q its further light: the light it finds past q, over its throughput
+  // at q times q's constant BRDF (`relative`: the throughput past q on that scale; zero while not feeding).
+  FurtherFeed feed;
+  Vec3 relative(0.0f);
+  const auto add = [&](const Vec3& x) {
+    light += throughput * x;
+    feed.arriving += relative * x;
+  };
+  const auto scale = [&](const Vec3& factor) {
+    throughput *= factor;
+    relative *= factor;
+  };
+  // A feeding path draws its numbers past q from the pixel's look-up stream: a cell averages paths from many pixels'
+  // first frames of a generation, a subset of their Sobol sequences that is not stratified, so its samples must be
+  // independent ones.
+  const auto draw = [&](uint32_t pair) {
+    if (!feed.feeds) return sampler.get_2d_of_dimension(pair);
+    const float a = reuse.store->jitter->next_float();
+    return Vec2(a, reuse.store->jitter->next_float());
+  };
   for (uint32_t vertex = 0;; ++vertex) {
     const Material& m = scene.material_of(v.triangle);
     const uint32_t pair = kPairsPerVertex * vertex;
-    const Vec2 lobe_u = sampler.get_2d_of_dimension(pair);
+    const Vec2 lobe_u = draw(pair);
     const bool scatters = bounces + 1 <= settings.max_bounces;
     // p scatters by its BRDF (a specular p: by its base, which the camera's path chose); later vertices by their
     // lobes.
@@ -128,47 +180,55 @@ Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSe
       ++counts.lookups;
       const VertexL1 answer = lobes ? VertexL1{} : l1_at_vertex(traced, settings, reuse, v, m);
       if (answer.source != VertexL1::kShadowRay) {
-        light += throughput * answer.l1;
+        add(answer.l1);
         whole_l1 = true;
         counts.from_screen += answer.source == VertexL1::kScreen;
         counts.from_store += answer.source == VertexL1::kStore;
       } else {
         Vec3 arriving(0.0f);
-        light +=
-            throughput * next_event(traced, v, m, settings.blinn_k, lobes ? specular.base_probability : 1.0f, scatters,
-                                    sampler.get_2d_of_dimension(pair + 2), sampler.get_2d_of_dimension(pair + 3), rays,
-                                    answer.feeds ? &arriving : nullptr);
+        add(next_event(traced, v, m, settings.blinn_k, lobes ? specular.base_probability : 1.0f, scatters,
+                       draw(pair + 2), draw(pair + 3), rays, answer.feeds ? &arriving : nullptr));
         if (answer.feeds) reuse.store->records->push_back(make_l1_record(answer.key, answer.hash, arriving, 1));
+      }
+    }
+    if (vertex == 1 && bounces == 1 && reuse.store && !lobes && reflects_light(m) &&
+        brdf_is_constant(m, settings.blinn_k, v.shading_normal, v.wo)) {
+      Vec3 further(0.0f);
+      if (further_at_first_bounce(*reuse.store, v, first, feed, further)) {
+        light += throughput * constant_brdf(m, v.albedo, settings.blinn_k) * further;
+        ++counts.ended_at_store;
+        break;
       }
     }
     if (!scatters) break;
     if (vertex >= kRouletteVertex) {
       const float survival = std::min(1.0f, std::max({throughput.r, throughput.g, throughput.b}));
       if (!(lobe_u.y < survival)) break;
-      throughput /= survival;
+      scale(Vec3(1.0f / survival));
     }
     Vec3 dir(0.0f);
     if (vertex == 0 && first) {
       if (!first->open) break;
       dir = first->ray.dir;
-      throughput *= eval_brdf(m, v.albedo, v.shading_normal, dir, v.wo, settings.blinn_k) * kPi;
+      scale(eval_brdf(m, v.albedo, v.shading_normal, dir, v.wo, settings.blinn_k) * kPi);
       bounce_pdf = glm::dot(v.shading_normal, dir) * kInvPi;
       after_specular = false;
     } else if (lobes && specular.lobe != SpecularLobe::kBase) {
       if (specular.lobe == SpecularLobe::kNone) break;
       dir = specular.dir;
-      throughput *= specular.weight;
+      scale(specular.weight);
       after_specular = true;
     } else {
-      const Vec2 u = sampler.get_2d_of_dimension(pair + 1);
+      const Vec2 u = draw(pair + 1);
       const Vec3 local = sample_cosine_hemisphere(u.x, u.y);
       dir = Frame::from_normal(v.shading_normal).to_world(local);
       if (!(local.z > 0.0f) || glm::dot(dir, v.geometric_normal) <= 0.0f) break;
       // f cos / pdf: the base's albedo / its probability, or f pi for a BRDF sampled by its cosine.
-      throughput *=
-          lobes ? specular.weight : eval_brdf(m, v.albedo, v.shading_normal, dir, v.wo, settings.blinn_k) * kPi;
+      scale(lobes ? specular.weight : eval_brdf(m, v.albedo, v.shading_normal, dir, v.wo, settings.blinn_k) * kPi);
       bounce_pdf = (lobes ? specular.base_probability : 1.0f) * local.z * kInvPi;
       after_specular = false;
+      // A feeding q's BRDF is constant and its direction cosine-sampled: f cos / pdf over that constant is pi.
+      if (feed.feeds && vertex == 1) relative = Vec3(kPi);
     }
     if (!(std::max({throughput.r, throughput.g, throughput.b}) > 0.0f)) break;
     Ray ray;
@@ -188,14 +248,15 @@ Vec3 trace_path(const TracedScene& traced, const SurfacePoint& p, const RenderSe
     if (v.front_face && mv.emissive()) {
       const uint32_t reached = vertex + 1;
       if (after_specular && reached >= 2) {
-        light += throughput * mv.ke;
+        add(mv.ke);
       } else if (!after_specular && reached >= 3 && !whole_l1) {
         const float cos_light = glm::dot(v.geometric_normal, v.wo);
         const float light_pdf = power_point_density(traced.lights, mv.ke) * hit.t * hit.t / cos_light;
-        light += throughput * mv.ke * power_heuristic(bounce_pdf, light_pdf);
+        add(mv.ke * power_heuristic(bounce_pdf, light_pdf));
       }
     }
   }
+  if (feed.feeds) reuse.store->records->push_back(make_l1_record(feed.key, feed.hash, feed.arriving, 1));
   return light;
 }
 
@@ -214,6 +275,7 @@ FurtherBounces estimate_further_bounces(const TracedScene& traced, const Surface
     const SharedBounce* first = k < shared_count ? &shared[k] : nullptr;
     sum += trace_path(traced, p, settings, bounces_before, sampler, rays_traced, first, reuse, result);
   }
+  result.paths = settings.ln_rays;
   result.light = sum / static_cast<float>(settings.ln_rays);
   return result;
 }

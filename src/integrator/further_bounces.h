@@ -31,7 +31,11 @@ namespace lueur {
 ///    albedo, and no shadow ray is traced; where the cell is missing or not ready (or at a hit of the learning
 ///    share, l1_cache.h) the vertex traces its shadow ray as without a store, and the light that ray's sample brings
 ///    (without the BRDF or the MIS weight) feeds the cell as a one-sample record: feeding costs no ray. Where the
-///    full store would refuse the cell, nothing is fed.
+///    full store would refuse the cell, nothing is fed. At a path's first bounce hit q, where p was seen directly
+///    (`bounces_before` 0) and q's BRDF is constant, the store is also asked for q's further light (l1_cache.h,
+///    kFurtherMinSamples), in the cell L2 looked up at q when the path starts along L2's bounce: where it is ready
+///    the path adds it times q's BRDF and ends; otherwise the path goes on and, where the cell may feed, its light
+///    past q over its throughput there becomes a record.
 ///  - `screen` (the modes that read it): the pixel that sees the vertex directly gives its L1 (the report's reuse,
 ///    one bounce further); not with --reuse-diffuse-only or on a colour map.
 struct FurtherBounceReuse {
@@ -46,6 +50,8 @@ struct FurtherBounces {
   int lookups = 0;      ///< vertices past q that reflect light: each needs L1
   int from_screen = 0;  ///< of those, how many took it from the screen
   int from_store = 0;   ///< how many read it from a ready cell of the store
+  int paths = 0;        ///< paths traced from p
+  int ended_at_store = 0;  ///< of those, how many took their further light at q from the store and ended there
 };
 
 FurtherBounces estimate_further_bounces(const TracedScene& traced, const SurfacePoint& p,

@@ -271,7 +271,7 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
       ++rays_traced;
       ++result.bounce_rays;
       const Hit hit = intersect_closest(traced.accel, ray);
-      if (index < shared_count) shared[index] = SharedBounce{true, ray, hit};
+      if (index < shared_count) shared[index] = SharedBounce{true, ray, hit, false, {}, 0};
       if (!hit.found()) continue;
       // A black q (a light, the rig's sky) has L1(q) = 0: nothing to look up, trace or count among the bounce hits
       // that the screen, the store or a recomputation serve.
@@ -288,6 +288,11 @@ IndirectResult estimate_indirect_light(const TracedScene& traced, const Camera& 
         // The store is asked first (where it has a ready cell, its L1 has at least kL1CacheMinSamples samples, often far more, and the least bias);
         // the screen, if at all, only where it has not.
         key_for_store(scene, *cache, b);
+        if (index < shared_count) {
+          shared[index].keyed = true;
+          shared[index].key = b.key;
+          shared[index].hash = b.hash;
+        }
       } else if (reuse) {
         b.pixel = screen_pixel_of(camera, screen, b.q_position);
         if (b.pixel >= 0) {

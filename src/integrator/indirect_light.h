@@ -50,6 +50,11 @@ struct SharedBounce {
   bool open = false;  ///< false: the direction dipped below p's surface and was not traced
   Ray ray;
   Hit hit;  ///< not found(): the ray met nothing
+  /// With the store: L2 looked up q's jittered cell, whose key ln's path then looks up again (its slot is still in
+  /// the cache) rather than drawing a cell of its own.
+  bool keyed = false;
+  L1CacheKey key;
+  uint64_t hash = 0;
 };
 
 /// The screen pixel whose primary ray hit q, or -1: q projects into it, its primary ray hit q's triangle, and its

@@ -182,7 +182,7 @@ FurtherBounces trace_further_bounces(const TracedScene& traced, const Camera& ca
 /// Per-worker counters, padded apart so that workers do not share cache lines.
 struct alignas(64) WorkerCounters {
   uint64_t rays = 0, primary_rays = 0, bounce_rays = 0, bounce_hits = 0, reused = 0, cached = 0;
-  uint64_t ln_lookups = 0, ln_reused = 0, ln_cached = 0;
+  uint64_t ln_lookups = 0, ln_reused = 0, ln_cached = 0, ln_paths = 0, ln_ended = 0;
   ServedSamples served;
 };
 
@@ -235,6 +235,8 @@ void trace_indirect(const TracedScene& traced, const Camera& camera, const Rende
   counts.ln_lookups += static_cast<uint64_t>(further.lookups);
   counts.ln_reused += static_cast<uint64_t>(further.from_screen);
   counts.ln_cached += static_cast<uint64_t>(further.from_store);
+  counts.ln_paths += static_cast<uint64_t>(further.paths);
+  counts.ln_ended += static_cast<uint64_t>(further.ended_at_store);
   counts.bounce_rays += static_cast<uint64_t>(r.bounce_rays);
   counts.bounce_hits += static_cast<uint64_t>(r.bounce_hits);
   counts.reused += static_cast<uint64_t>(r.reused);
@@ -370,6 +372,8 @@ FrameResult render_frame(const TracedScene& traced, const Camera& camera, const 
     result.ln_lookups += c.ln_lookups;
     result.ln_reused += c.ln_reused;
     result.ln_cached += c.ln_cached;
+    result.ln_paths += c.ln_paths;
+    result.ln_ended += c.ln_ended;
     result.served_samples.add(c.served);
   }
 

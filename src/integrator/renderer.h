@@ -29,6 +29,8 @@ struct FrameResult {
   uint64_t ln_lookups = 0;       ///< ln's vertices past q that needed L1 (further_bounces.h)
   uint64_t ln_reused = 0;        ///< of those, how many took it from the screen
   uint64_t ln_cached = 0;        ///< of those, how many read it from the L1 store
+  uint64_t ln_paths = 0;         ///< ln's paths (with L2: those that start along L2's bounces)
+  uint64_t ln_ended = 0;         ///< of those, how many took their further light from the store at q and ended
   L1CacheStats cache;            ///< the L1 store after this frame's merge (empty without a store mode)
   ServedSamples served_samples;  ///< the samples of the store's cells that served this frame's hits
   double l2_seconds = 0.0;       ///< wall time of the second phase: L2, and ln when it is on

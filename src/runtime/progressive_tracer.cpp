@@ -231,6 +231,8 @@ void ProgressiveTracer::run() {
       stats_.ln_lookups += result.ln_lookups;
       stats_.ln_reused += result.ln_reused;
       stats_.ln_cached += result.ln_cached;
+      stats_.ln_paths += result.ln_paths;
+      stats_.ln_ended += result.ln_ended;
       stats_.served.add(result.served_samples);
       stats_.cache = result.cache;
       if (divisor == 1)

@@ -32,6 +32,7 @@ struct TracerStats {
   double l2_seconds = 0.0;
   uint64_t l2_bounce_hits = 0, l2_reused = 0, l2_cached = 0;
   uint64_t ln_lookups = 0, ln_reused = 0, ln_cached = 0;  ///< ln's vertices past q that needed L1, and their sources
+  uint64_t ln_paths = 0, ln_ended = 0;  ///< ln's paths, and those that ended at a cell's further light
   ServedSamples served;  ///< the samples of the store's cells that served L2's and ln's look-ups
   L1CacheStats cache;  ///< the L1 store after the last frame
   /// Where the accumulation stops whatever the frame limit: further frames would repeat earlier ones

@@ -12,9 +12,9 @@ namespace lueur {
 namespace {
 
 /// The version counts changes of the layout and of what the frames draw: a state of frames sampled otherwise (2: Le's
-/// own rays, runs of samples a power of two apart; 3: the further-bounce layer ln among the layers) would resume
-/// into bytes no uninterrupted render gives.
-constexpr std::string_view kMagic = "LUEUR-STATE 3\n";
+/// own rays, runs of samples a power of two apart; 3: the further-bounce layer ln among the layers; 4: the store's
+/// cells hold ln's further light) would resume into bytes no uninterrupted render gives.
+constexpr std::string_view kMagic = "LUEUR-STATE 4\n";
 
 uint32_t layer_mask(const Film& film) {
   uint32_t mask = 0;

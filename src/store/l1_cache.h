@@ -1,11 +1,12 @@
 // A world-space store of L1 (the report's improvement II-B): a hashed grid of cells over the surfaces seen, each
 // the running sum of the light arriving there (L1 without the BRDF) that L1 estimates found, so that L2 can take
-// L1(q) where the screen never saw q. Cells are keyed by quantised position, size level and the normal's direction,
-// hold their full key (a collision is a different key, never a merge), and live in open-addressed shards that grow
-// with the surfaces seen up to a cap. A frame only reads the store; what it found is merged in at its end, in pixel
-// order, so that the image does not depend on the thread count.
-// This folder, store/, is the integrator's cache: it is kept beside the film (integrator/renderer.h: Accumulation),
-// saved beside it in the resume state, and depends on core only (the camera, the thread pool, byte streams).
+// L1(q) where the screen never saw q (and, in cells of their own, ln's further light: kFurtherLight). Cells are keyed
+// by quantised position, size level, the normal's direction and what they hold, hold their full key (a collision is
+// a different key, never a merge), and live in open-addressed shards that grow with the surfaces seen up to a cap. A
+// frame only reads the store; what it found is merged in at its end, in pixel order, so that the image does not depend
+// on the thread count. This folder, store/, is the integrator's cache: it is kept beside the film
+// (integrator/renderer.h: Accumulation), saved beside it in the resume state, and depends on core only (the camera, the
+// thread pool, byte streams).
 #pragma once
 
 #include <array>
@@ -26,18 +27,21 @@ struct L1CacheKey {
   int32_t x = 0, y = 0, z = 0;  ///< the position over the cell size, floored
   uint8_t level = 0;            ///< the cell size is base_size x 2^level
   uint8_t normal = 0;           ///< the normal's dominant axis and sign: 0..5 (+x -x +y -y +z -z)
-  uint16_t unused = 0;
+  /// What the cell holds (kL1Light, kFurtherLight). Left out of the hash: a place's two cells start their probes in
+  /// the same slot, so that the look-up of one brings the other's slot into the cache.
+  uint16_t light = 0;
   bool operator==(const L1CacheKey&) const = default;
 };
 
-/// What a cell holds: the sum of the arriving light of every shadow-ray sample merged into it, and their count.
+/// What a cell holds: the sum of the arriving light of every sample merged into it, and their count (kL1Light:
+/// shadow-ray samples of L1; kFurtherLight: paths that went on from the cell, kFurtherMinSamples).
 struct L1CacheCell {
   L1CacheKey key;
   uint32_t samples = 0;  ///< 0: an empty slot
   Vec3 sum{0.0f};
 };
 
-/// One L1 estimate on its way to the store: its cell, and its arriving light summed over its `samples` rays.
+/// One estimate on its way to the store: its cell, and its arriving light summed over its `samples` samples.
 struct L1CacheRecord {
   L1CacheKey key;
   uint64_t hash = 0;
@@ -45,7 +49,7 @@ struct L1CacheRecord {
   uint32_t samples = 0;
 };
 
-/// The record of an L1 estimate whose light arriving, averaged over `samples` samples, was `arriving`.
+/// The record of an estimate whose light arriving, averaged over `samples` samples, was `arriving`.
 inline L1CacheRecord make_l1_record(const L1CacheKey& key, uint64_t hash, const Vec3& arriving, uint32_t samples) {
   return L1CacheRecord{key, hash, arriving * static_cast<float>(samples), samples};
 }
@@ -101,6 +105,24 @@ inline constexpr int kL1CacheFillRays = static_cast<int>(kL1CacheMinSamples) / 2
 /// their error, for its whole generation. With a fixed share a cell's samples grow as the frames do, and its error
 /// falls as theirs. Chosen by L2's error after equal time (BENCHMARKS.md, "The L1 store by frames").
 inline constexpr float kL1CacheLearningShare = 0.0625f;
+
+/// What a cell holds (L1CacheKey::light): the light arriving by shadow rays (L1), or by two or more further bounces.
+inline constexpr uint16_t kL1Light = 0;
+inline constexpr uint16_t kFurtherLight = 1;
+
+/// ln's paths and the store (the modes that read it): at a path's first bounce hit q, one bounce after a pixel's
+/// surface seen directly, where q's BRDF is the same toward every direction, a cell that holds the further light of
+/// this many paths (the light reaching q by two or more further bounces: all that ln adds past q, without q's BRDF)
+/// gives their average, and the path ends there. Below it, and at kFurtherLearningShare of the hits on a ready cell,
+/// the path goes on as without a store and feeds the cell the light it found past q over its throughput there, so
+/// that every cell keeps learning; the cells shrink with the generations, as for L1, so their blur goes to nothing.
+/// Chosen by the time ln's error takes to reach `off`'s after 60 s on the conference room (`--sections store-ln`): 4
+/// and 8 did as well, 16 and 32 left more paths going on while their cells gathered.
+inline constexpr uint32_t kFurtherMinSamples = 8;
+
+/// The share of the hits on a cell with further light ready whose paths go on and feed it (measured as above: 1/32
+/// did as well, 1/8 worse).
+inline constexpr float kFurtherLearningShare = 0.0625f;
 
 /// The normal's dominant axis and sign, 0..5: surfaces that face apart (the two sides of a wall; a floor and the wall
 /// beside it) never share a cell.
@@ -224,19 +246,33 @@ class L1Cache {
   size_t max_cells_per_shard_ = 0;
 };
 
-/// What a hit on the cell `key` does with the store: reads the cell (it is ready, and this hit is not one of the
-/// learning share), feeds it (traces L1 with kL1CacheFillRays and adds a record: the cell is missing, not ready, or
-/// this hit is one of kL1CacheLearningShare), or only traces L1 (a missing cell that the full store would refuse).
-/// Draws one of the pixel's look-up numbers where the cell is ready.
+/// What a hit on the cell `key` does with the store: reads the cell (it holds `ready` samples, and this hit is not
+/// one of the learning share), feeds it (traces its estimate and adds a record: the cell is missing, not ready, or
+/// this hit is one of `learning_share`), or only traces (a missing cell that the full store would refuse). Draws one
+/// of the pixel's look-up numbers where the cell is ready.
 enum class StoreUse { kRead, kFeed, kTrace };
-inline StoreUse use_of_store(const L1CacheAccess& access, const L1CacheKey& key, uint64_t hash,
-                             const L1CacheCell*& cell) {
+inline StoreUse use_of_cell(const L1CacheAccess& access, const L1CacheKey& key, uint64_t hash, uint32_t ready,
+                            float learning_share, const L1CacheCell*& cell) {
   cell = access.store->find(key, hash);
   if (!cell) return access.store->refuses_new_cell(hash) ? StoreUse::kTrace : StoreUse::kFeed;
-  if (cell->samples < kL1CacheMinSamples) return StoreUse::kFeed;
-  if (access.jitter->next_float() < kL1CacheLearningShare) return StoreUse::kFeed;
-  if (access.served) access.served->add(cell->samples);
+  if (cell->samples < ready) return StoreUse::kFeed;
+  if (access.jitter->next_float() < learning_share) return StoreUse::kFeed;
   return StoreUse::kRead;
+}
+
+/// For L1 at a bounce hit: a fill traces kL1CacheFillRays; a read counts among the served samples.
+inline StoreUse use_of_store(const L1CacheAccess& access, const L1CacheKey& key, uint64_t hash,
+                             const L1CacheCell*& cell) {
+  const StoreUse use = use_of_cell(access, key, hash, kL1CacheMinSamples, kL1CacheLearningShare, cell);
+  if (use == StoreUse::kRead && access.served) access.served->add(cell->samples);
+  return use;
+}
+
+/// For the further light at ln's first bounce hit, whose cell's key has kFurtherLight: a read ends the path, a feed
+/// lets it go on and turns what it found into a record.
+inline StoreUse further_use_of_store(const L1CacheAccess& access, const L1CacheKey& key, uint64_t hash,
+                                     const L1CacheCell*& cell) {
+  return use_of_cell(access, key, hash, kFurtherMinSamples, kFurtherLearningShare, cell);
 }
 
 }  // namespace lueur

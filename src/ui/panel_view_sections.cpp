@@ -179,6 +179,9 @@ void statistics_section(const PanelModel& m) {
       ImGui::Text("Ln's L1: %.0f%% screen, %.0f%% store, %.0f%% traced", ln_share(s.ln_reused), ln_share(s.ln_cached),
                   ln_share(s.ln_lookups - s.ln_reused - s.ln_cached));
     }
+    if (s.ln_ended > 0)
+      ImGui::Text("Ln's paths ended by the store: %.0f%%",
+                  100.0 * static_cast<double>(s.ln_ended) / static_cast<double>(s.ln_paths));
     ImGui::Text("L2 time %.2f s", s.l2_seconds);
   }
   if (m.display_fps > 0.0) ImGui::Text("Display %.0f frames/s", m.display_fps);
