@@ -11,11 +11,12 @@ lueur_install_packages
 
 # Threading tests: the thread pool, the renderer across thread counts and cancelled from another thread, the
 # viewer's tracer thread (its stress test included), the BVH's parallel build, the OBJ read, the smooth normals and
-# the textures on every core, and the loading line's redrawing thread.
+# the textures on every core, the loading line's redrawing thread, and the L1 store's records from every thread (ln's
+# further light among them).
 # Embree's own threads are not instrumented, so its tests stay out.
 TSAN_TARGETS=(test_thread_pool test_render test_indirect test_progressive test_bvh_brute_force test_bvh_degenerate
-  test_obj_chunks test_smooth_normals test_textures test_load_progress)
-TSAN_TESTS='ThreadPool|CancelledFrame|Render\.BitIdentical|ReuseFraction|ProgressiveTracer|Bvh|ObjChunks|SmoothNormals|TextureLoading|LoadProgressLine'
+  test_obj_chunks test_smooth_normals test_textures test_load_progress test_store_learning)
+TSAN_TESTS='ThreadPool|CancelledFrame|Render\.BitIdentical|ReuseFraction|ProgressiveTracer|Bvh|ObjChunks|SmoothNormals|TextureLoading|LoadProgressLine|StoreServesLn\.AreTheSameBytes'
 
 # The tests that draw through OpenGL (Mesa) in-process or in the lueur processes they start.
 GL_TESTS='GlDisplay|Window\.UnderXvfb'
