@@ -6,10 +6,11 @@
 #include <random>
 
 #include "display/window_layout.h"
-#include "image/image_output.h"
 #include "film/noise_view.h"
+#include "image/image_output.h"
 #include "test_support.h"
 #include "ui/headless_screenshot.h"
+#include "ui/pixel_inspector.h"
 
 namespace lueur {
 namespace {
@@ -136,6 +137,20 @@ INSTANTIATE_TEST_SUITE_P(Contexts, GlDisplay, ::testing::Values(HeadlessGl::kEgl
                          [](const ::testing::TestParamInfo<HeadlessGl>& param_info) {
                            return std::string(kHeadlessGlNames[static_cast<size_t>(param_info.param)]);
                          });
+
+TEST(PixelInspector, NamesEveryLayerAndEachPassAsItsViewIsNamed) {
+  // Its labels were once a table one entry short of the layers: the store modes' cell layer read past it, and
+  // pointing at the image crashed the window.
+  for (int l = 0; l < kLayerCount; ++l) {
+    const char* label = pixel_layer_label(static_cast<Layer>(l));
+    ASSERT_NE(label, nullptr) << kLayerNames[static_cast<size_t>(l)];
+    if (l < kPassCount) {
+      std::string lower(label);
+      for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      EXPECT_EQ(lower, kLayerNames[static_cast<size_t>(l)]);
+    }
+  }
+}
 
 TEST(WindowLayout, ThePanelTakesTheLeftColumnAndTheImageTheRest) {
   const WindowLayout layout = lay_out_window(852, 512, 852, 512, 340.0);

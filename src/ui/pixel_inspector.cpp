@@ -12,10 +12,6 @@
 namespace lueur {
 namespace {
 
-/// What each layer is called in the section (the names of --view, said the way the report says them).
-constexpr std::array<const char*, kLayerCount> kLayerLabels = {
-    "Le", "L1", "L2", "AO", "L2 (screen L1)", "L2 (recomputed)", "", "L1 diffuse", "L2 (stored L1)", ""};
-
 /// The pinned pixel's running averages against the frame count (log2 across, linear up): the passes settling.
 void convergence_plot(const std::vector<ProbePoint>& history) {
   if (history.size() < 2) return;
@@ -59,6 +55,35 @@ void rgb_row(const char* label, const Vec3& v) {
 
 }  // namespace
 
+const char* pixel_layer_label(Layer layer) {
+  // A switch, not a table: a layer added to the enum without a label here is a compiler warning, not a null label.
+  switch (layer) {
+    case Layer::kLe:
+      return "Le";
+    case Layer::kL1:
+      return "L1";
+    case Layer::kL2:
+      return "L2";
+    case Layer::kAo:
+      return "AO";
+    case Layer::kLn:
+      return "Ln";
+    case Layer::kL2Reused:
+      return "L2 (screen L1)";
+    case Layer::kL2Recomputed:
+      return "L2 (recomputed)";
+    case Layer::kReuseFraction:
+      return "";  // shares, not light: a line of its own
+    case Layer::kL1Diffuse:
+      return "L1 diffuse";
+    case Layer::kL2Cached:
+      return "L2 (stored L1)";
+    case Layer::kCacheCells:
+      return "";  // the store's cells in false colour, not light
+  }
+  return "";
+}
+
 void pixel_section(const PanelModel& m) {
   if (!m.probe) {
     ImGui::TextDisabled("Point at the image; a right click pins the pixel");
@@ -72,13 +97,14 @@ void pixel_section(const PanelModel& m) {
   ImGui::TextDisabled("%-15s %8s %8s %8s", "linear", "R", "G", "B");
   rgb_row("image", p.combined);
   for (size_t l = 0; l < static_cast<size_t>(kLayerCount); ++l) {
-    if (!p.layers[l] || kLayerLabels[l][0] == '\0') continue;
+    const char* label = pixel_layer_label(static_cast<Layer>(l));
+    if (!p.layers[l] || label[0] == '\0') continue;
     if (l < static_cast<size_t>(kPassCount)) {  // a pass: in its plot colour
       ImGui::PushStyleColor(ImGuiCol_Text, ImGui::ColorConvertU32ToFloat4(kPlotColours[l]));
-      rgb_row(kLayerLabels[l], *p.layers[l]);
+      rgb_row(label, *p.layers[l]);
       ImGui::PopStyleColor();
     } else {
-      rgb_row(kLayerLabels[l], *p.layers[l]);
+      rgb_row(label, *p.layers[l]);
     }
   }
   // The reuse fractions are shares of the bounce hits, not light.

@@ -10,6 +10,10 @@ namespace lueur {
 /// accumulation restarted, and the history with it); clears the history when no pixel is pinned.
 void record_probe(PanelModel& model);
 
+/// What the "Pixel" section calls a layer (the names of --view, said the way the report says them); empty for the
+/// layers it does not list as light (the reuse shares, the store's cells).
+const char* pixel_layer_label(Layer layer);
+
 /// The "Pixel" section: the image's linear value at the inspected pixel and each rendered layer's average there.
 void pixel_section(const PanelModel& model);
 
