@@ -70,6 +70,13 @@ struct VertexL1 {
   uint64_t hash = 0;
 };
 
+/// The jittered cell of the store at vertex v, and its hash: draws two of the pixel's look-up numbers.
+void key_at_vertex(const L1CacheAccess& store, const SurfacePoint& v, L1CacheKey& key, uint64_t& hash) {
+  const float u1 = store.jitter->next_float(), u2 = store.jitter->next_float();
+  key = jittered_key(*store.grid, v.position, v.geometric_normal, u1, u2);
+  hash = hash_of(key);
+}
+
 /// Where vertex v takes its L1 under further_bounces.h's rules: the store first (read where its cell is ready,
 /// else fed by the vertex's own shadow ray), then the screen pixel that sees v.
 VertexL1 l1_at_vertex(const TracedScene& traced, const RenderSettings& settings, const FurtherBounceReuse& reuse,
@@ -78,9 +85,7 @@ VertexL1 l1_at_vertex(const TracedScene& traced, const RenderSettings& settings,
   if (settings.camera_light || !brdf_is_constant(m, settings.blinn_k, v.shading_normal, v.wo)) return answer;
   if (reuse.store) {
     const L1CacheAccess& store = *reuse.store;
-    const float u1 = store.jitter->next_float(), u2 = store.jitter->next_float();
-    answer.key = jittered_key(*store.grid, v.position, v.geometric_normal, u1, u2);
-    answer.hash = hash_of(answer.key);
+    key_at_vertex(store, v, answer.key, answer.hash);
     const L1CacheCell* cell = nullptr;
     const StoreUse use = use_of_store(store, answer.key, answer.hash, cell);
     if (use == StoreUse::kRead) {
@@ -118,9 +123,7 @@ bool further_at_first_bounce(const L1CacheAccess& store, const SurfacePoint& q, 
     feed.key = first->key;
     feed.hash = first->hash;
   } else {
-    const float u1 = store.jitter->next_float(), u2 = store.jitter->next_float();
-    feed.key = jittered_key(*store.grid, q.position, q.geometric_normal, u1, u2);
-    feed.hash = hash_of(feed.key);
+    key_at_vertex(store, q, feed.key, feed.hash);
   }
   feed.key.light = kFurtherLight;  // the hash stays the L1 cell's: the slot L2 just read
   const L1CacheCell* cell = nullptr;
